@@ -1,0 +1,10 @@
+# relmap_add_gtest(<name> SOURCES <files...> LIBRARIES <targets...> [LABELS <labels...>])
+# A GoogleTest executable registered with CTest test by test (gtest_discover_tests).
+include(GoogleTest)
+function(relmap_add_gtest name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBRARIES;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBRARIES} GTest::gmock GTest::gtest_main relmap_warnings)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
+endfunction()

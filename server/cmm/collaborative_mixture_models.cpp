@@ -1,0 +1,117 @@
+// Algorithm IAGMM (§3.4): creating the model, adding a sample, the random
+// re-check, and the class weights. SPLIT, MERGE, prediction, the likelihood and
+// snapshots live in their own files.
+#include "cmm/collaborative_mixture_models.h"
+
+#include <string>
+
+namespace relmap::cmm {
+
+CollaborativeMixtureModels::CollaborativeMixtureModels(const CmmConfig& config, int dimension)
+    : config_(config),
+      data_(dimension),
+      random_(config.seed),
+      tolerance_(dimension, config.alpha) {}
+
+StatusOr<CollaborativeMixtureModels> CollaborativeMixtureModels::Create(const CmmConfig& config,
+                                                                        int dimension) {
+  if (Status status = Validate(config); !status.ok()) return status;
+  if (dimension < 1) {
+    return InvalidArgumentError("feature dimension must be at least 1, got " +
+                                std::to_string(dimension));
+  }
+  return CollaborativeMixtureModels(config, dimension);
+}
+
+StatusOr<UpdateReport> CollaborativeMixtureModels::Add(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                       int label) {
+  if (x.size() != dimension()) {
+    return InvalidArgumentError("feature has " + std::to_string(x.size()) +
+                                " values, the model expects " + std::to_string(dimension()));
+  }
+  if (!x.allFinite()) return InvalidArgumentError("feature has a non-finite value");
+  if (label != 0 && label != 1) {
+    return InvalidArgumentError("label must be 0 or 1, got " + std::to_string(label));
+  }
+
+  // Step 1: append to S.
+  data_.Append(x, label);
+  InvalidateLikelihood(0);
+  InvalidateLikelihood(1);
+  const int sample = data_.size() - 1;
+  UpdateReport report;
+  report.label = label;
+
+  // Step 2: the nearest component of the class takes the sample.
+  auto& mixture = components_[label];
+  if (mixture.empty()) {
+    const std::vector<int> only{sample};
+    mixture.push_back(Component::FromSamples(label, only, data_, config_));
+    RefreshWeights(label);
+    report.component = 0;
+  } else {
+    report.component = NearestComponent(label, x);
+    mixture[report.component].AddSample(sample, data_, config_);
+    if (!config_.switches.stale_weights) RefreshWeights(label);
+  }
+
+  // Steps 3 and 4.
+  SplitOrMerge(label, report.component, report);
+  RandomRecheck(report.component, report);
+  return report;
+}
+
+int CollaborativeMixtureModels::NearestComponent(int label,
+                                                 const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  const auto& mixture = components_[label];
+  int nearest = 0;
+  double best = mixture[0].SquaredMahalanobis(x);
+  for (int k = 1; k < static_cast<int>(mixture.size()); ++k) {
+    const double d = mixture[k].SquaredMahalanobis(x);
+    if (d < best) best = d, nearest = k;
+  }
+  return nearest;
+}
+
+void CollaborativeMixtureModels::SplitOrMerge(int label, int index, UpdateReport& report) {
+  if (!TrySplit(label, index, report)) TryMerge(label, index, report);
+}
+
+void CollaborativeMixtureModels::RandomRecheck(int step_two_index, UpdateReport& report) {
+  for (int label = 0; label < 2; ++label) {
+    const auto count = components_[label].size();
+    std::size_t pick = 0;
+    if (config_.switches.truncated_recheck) {
+      // The 2018 code: stop at the first class with fewer than two components,
+      // and never draw the index of step 2, in either class.
+      if (count < 2) break;
+      const auto excluded = static_cast<std::size_t>(step_two_index);
+      if (excluded < count) {
+        pick = random_.UniformIndex(count - 1);
+        if (pick >= excluded) ++pick;
+      } else {
+        pick = random_.UniformIndex(count);
+      }
+    } else {
+      if (count == 0) continue;
+      pick = random_.UniformIndex(count);
+    }
+    SplitOrMerge(label, static_cast<int>(pick), report);
+  }
+}
+
+void CollaborativeMixtureModels::InvalidateLikelihood(int label) {
+  class_log_density_[label].resize(0);
+  sample_log_probability_.resize(0);
+  log_likelihood_.reset();
+}
+
+void CollaborativeMixtureModels::RefreshWeights(int label) {
+  auto& mixture = components_[label];
+  double total = 0.0;
+  for (const Component& c : mixture) total += c.size();
+  for (Component& c : mixture) c.set_weight(c.size() / total);
+  InvalidateLikelihood(label);
+}
+
+}  // namespace relmap::cmm

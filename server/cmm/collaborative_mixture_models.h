@@ -1,0 +1,117 @@
+// Collaborative Mixture Models (Le Goff et al., 2018, §3 of ALGORITHMS.md): one
+// Gaussian mixture per class, grown online by Algorithm IAGMM, predicting
+// P(moveable | x) with eq. (class_est).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "cmm/component.h"
+#include "cmm/config.h"
+#include "cmm/dataset.h"
+#include "cmm/random.h"
+#include "cmm/snapshot.h"
+#include "cmm/tolerance_threshold.h"
+#include "common/status.h"
+
+namespace relmap::cmm {
+
+// What one Add() did, for logs and tests.
+struct UpdateReport {
+  int label = 0;
+  int component = 0;             // index within the class of the component that took the sample
+  int splits = 0;                // accepted splits (step 3 and the re-check)
+  int merges = 0;                // accepted merges
+  int candidates_evaluated = 0;  // candidate models whose log-likelihood was computed
+};
+
+// The classifier's view of a batch of points, computed in one pass over the
+// components: relevance and what exploration's confidence needs.
+struct Evaluation {
+  Eigen::VectorXd relevance;  // P(L=1 | x), eq. (class_est); 0.5 with no component
+  // min_k d²_k(x) over the components of both classes; +∞ with no component.
+  Eigen::VectorXd nearest_squared_mahalanobis;
+  // log of the membership probability w_k* G_k*(x) / Γ_c(x) of that nearest
+  // component k* within its class c (eq. comp_est); −∞ with no component.
+  Eigen::VectorXd nearest_log_membership;
+};
+
+class CollaborativeMixtureModels {
+ public:
+  // An empty model for features of `dimension` values. Invalid config → error.
+  static StatusOr<CollaborativeMixtureModels> Create(const CmmConfig& config, int dimension);
+  // The model a snapshot describes; an inconsistent snapshot → INVALID_ARGUMENT
+  // or DATA_LOSS with what is wrong.
+  static StatusOr<CollaborativeMixtureModels> Restore(const CmmSnapshot& snapshot);
+
+  // Algorithm IAGMM (§3.4): appends (x, label) and updates the mixtures. A wrong
+  // dimension, a non-finite value or a label other than 0/1 → INVALID_ARGUMENT,
+  // and the model is unchanged.
+  StatusOr<UpdateReport> Add(const Eigen::Ref<const Eigen::VectorXd>& x, int label);
+
+  // Relevance, nearest distance and membership of every row of `points` (N×p),
+  // in one batched pass. Rows must be finite (the caller masks the others).
+  Evaluation Evaluate(const Eigen::Ref<const Eigen::MatrixXd>& points) const;
+  // Eq. (class_est) for every row of `points`.
+  Eigen::VectorXd Predict(const Eigen::Ref<const Eigen::MatrixXd>& points) const;
+
+  // L = Σ_i log P(L = l_i | x_i) over the dataset (§3.8). Fills the lazy cache.
+  double LogLikelihood();
+
+  CmmSnapshot Snapshot() const;
+
+  const CmmConfig& config() const { return config_; }
+  int dimension() const { return data_.dimension(); }
+  const Dataset& dataset() const { return data_; }
+  const std::vector<Component>& components(int label) const { return components_[label]; }
+  int component_count(int label) const { return static_cast<int>(components_[label].size()); }
+  int sample_count(int label) const { return data_.count(label); }
+  std::uint64_t splits() const { return splits_; }
+  std::uint64_t merges() const { return merges_; }
+
+ private:
+  CollaborativeMixtureModels(const CmmConfig& config, int dimension);
+
+  // Index within `label` of the component nearest to x (Mahalanobis, §3.4 step 2).
+  int NearestComponent(int label, const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // SPLIT (§3.6) and MERGE (§3.7) of components_[label][index]; true if accepted.
+  bool TrySplit(int label, int index, UpdateReport& report);
+  bool TryMerge(int label, int index, UpdateReport& report);
+  // §3.4 step 3 and step 4.
+  void SplitOrMerge(int label, int index, UpdateReport& report);
+  void RandomRecheck(int step_two_index, UpdateReport& report);
+
+  // Whether `candidate`'s mean lies in the tolerance ellipsoid of `c` (§3.5).
+  bool Intersects(const Component& c, const Component& candidate);
+  // The other components of a class ordered by c's Mahalanobis distance to their
+  // centres, nearest first (ties: lower index), excluding `skip` (or -1).
+  std::vector<int> CandidatesByDistance(const Component& c, int label, int skip) const;
+
+  // Whether replacing class `label`'s components `removed` by `added` raises L
+  // strictly (always true with the switch skip_likelihood_check).
+  bool ImprovesLikelihood(int label, const std::vector<int>& removed, std::vector<Component>& added,
+                          UpdateReport& report);
+  // w_k = m_k / Σ_j m_j over the class (§3.1).
+  void RefreshWeights(int label);
+  // Forgets the cached log Γ of class `label` and L, after the class changed.
+  void InvalidateLikelihood(int label);
+
+  CmmConfig config_;
+  Dataset data_;
+  std::array<std::vector<Component>, 2> components_;
+  Random random_;
+  ToleranceThresholdTable tolerance_;
+  // log Γ_l(x_i) of each class, log P(l_i | x_i) of each sample and their sum
+  // L, kept between candidate evaluations while the model does not change
+  // (empty = to be computed).
+  std::array<Eigen::VectorXd, 2> class_log_density_;
+  Eigen::VectorXd sample_log_probability_;
+  std::optional<double> log_likelihood_;
+  std::uint64_t splits_ = 0;
+  std::uint64_t merges_ = 0;
+};
+
+}  // namespace relmap::cmm

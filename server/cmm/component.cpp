@@ -1,0 +1,207 @@
+// Running statistics and cached factors of one component (§3.1, §3.2).
+#include "cmm/component.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "cmm/whitened_distance.h"
+
+namespace relmap::cmm {
+namespace {
+
+// Thresholds of the authors' density (§3.2, pseudo_density).
+constexpr double kPseudoInverseCutoff = 1e-4;  // singular values kept in pinv(Σ) and pdet(2πΣ)
+constexpr double kHitRadiusSquared = 1e-4;  // ‖x − μ‖² inside which a kHit component fires
+constexpr double kHitScatterSquaredNorm = 1e-4;
+constexpr int kHitMaxSize = 4;
+
+const double kLogTwoPi = std::log(2.0 * std::numbers::pi);
+
+}  // namespace
+
+Component::Component(int label, int dimension)
+    : label_(label),
+      mean_(Eigen::VectorXd::Zero(dimension)),
+      scatter_(Eigen::MatrixXd::Zero(dimension, dimension)) {}
+
+Component Component::FromSamples(int label, std::span<const int> indices, const Dataset& data,
+                                 const CmmConfig& config) {
+  assert(!indices.empty());
+  Component c(label, data.dimension());
+  c.indices_.assign(indices.begin(), indices.end());
+  Eigen::MatrixXd points(data.dimension(), c.size());
+  for (int j = 0; j < c.size(); ++j) points.col(j) = data.sample(c.indices_[j]);
+  c.mean_ = points.rowwise().mean();
+  points.colwise() -= c.mean_;
+  c.scatter_.noalias() = points * points.transpose();
+  c.Refresh(data, config);
+  return c;
+}
+
+Component Component::FromState(int label, std::vector<int> indices, Eigen::VectorXd mean,
+                               Eigen::MatrixXd scatter, double weight, const Dataset& data,
+                               const CmmConfig& config) {
+  Component c(label, data.dimension());
+  c.indices_ = std::move(indices);
+  c.mean_ = std::move(mean);
+  c.scatter_ = std::move(scatter);
+  c.weight_ = weight;
+  c.Refresh(data, config);
+  return c;
+}
+
+Component Component::Union(const Component& a, const Component& b, const Dataset& data,
+                           const CmmConfig& config) {
+  assert(a.label_ == b.label_);
+  Component c(a.label_, data.dimension());
+  c.indices_ = a.indices_;
+  c.indices_.insert(c.indices_.end(), b.indices_.begin(), b.indices_.end());
+  // Chan et al.'s pairwise update of mean and centred scatter.
+  const double na = a.size();
+  const double nb = b.size();
+  const Eigen::VectorXd delta = b.mean_ - a.mean_;
+  c.mean_ = a.mean_ + delta * (nb / (na + nb));
+  c.scatter_ = a.scatter_ + b.scatter_;
+  c.scatter_.noalias() += (na * nb / (na + nb)) * delta * delta.transpose();
+  c.Refresh(data, config);
+  return c;
+}
+
+void Component::AddSample(int index, const Dataset& data, const CmmConfig& config) {
+  // Welford: with δ = x − μ_old, μ_new = μ_old + δ/(m+1) and
+  // M2_new = M2_old + (m/(m+1)) δδᵀ.
+  const double m = size();
+  const Eigen::VectorXd delta = data.sample(index) - mean_;
+  mean_ += delta / (m + 1.0);
+  scatter_.noalias() += (m / (m + 1.0)) * delta * delta.transpose();
+  if (!nearest_.nearest.empty()) AddToNearestNeighbours(index, data);
+  indices_.push_back(index);
+  Refresh(data, config);
+}
+
+void Component::AddToNearestNeighbours(int index, const Dataset& data) {
+  // The new sample has the highest position: strict comparisons keep older
+  // neighbours on ties, as the from-scratch search (ties to the lower index) does.
+  const int p = data.dimension();
+  const int position = size();
+  const double* x = data.data() + index;
+  int best = -1;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < position; ++j) {
+    const double d = SquaredDistance(data.data() + indices_[j], data.stride(), x, data.stride(), p);
+    if (d < nearest_.squared_distance[j]) {
+      nearest_.squared_distance[j] = d;
+      nearest_.nearest[j] = position;
+    }
+    if (d < best_distance) best_distance = d, best = j;
+  }
+  nearest_.nearest.push_back(best);
+  nearest_.squared_distance.push_back(best_distance);
+}
+
+const NearestNeighbourGraph& Component::NearestNeighbours(const Dataset& data) {
+  if (nearest_.nearest.size() != indices_.size()) {
+    Eigen::MatrixXd points(data.dimension(), size());
+    for (int j = 0; j < size(); ++j) points.col(j) = data.sample(indices_[j]);
+    nearest_ = cmm::NearestNeighbours(points);
+  }
+  return nearest_;
+}
+
+void Component::Refresh(const Dataset& data, const CmmConfig& config) {
+  const int p = data.dimension();
+  const int m = size();
+  const auto& switches = config.switches;
+  log_density_column_.clear();
+  centre_ = (switches.first_sample_mean && m <= kHitMaxSize)
+                ? Eigen::VectorXd(data.sample(indices_[0]))
+                : mean_;
+  whitening_is_lower_triangular_ = true;
+
+  if (switches.pseudo_density) {
+    if (m <= kHitMaxSize || scatter_.squaredNorm() < kHitScatterSquaredNorm) {
+      shape_ = Shape::kHit;
+      whitening_.setIdentity(p, p);
+      log_normaliser_ = m <= kHitMaxSize ? 0.0 : -p * kLogTwoPi;  // peak 1 or (2π)^−p
+      return;
+    }
+    // The authors' density: exp(−d²/2) / pdet(2πΣ), d² with pinv(Σ). Σ is
+    // symmetric positive semi-definite, so its singular values are the absolute
+    // eigenvalues and its SVD is its eigendecomposition.
+    const Eigen::MatrixXd sigma = scatter_ / (m - 1.0);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(sigma);
+    const Eigen::VectorXd singular = eigen.eigenvalues().cwiseAbs();
+    int kept = 0;
+    for (int i = 0; i < p; ++i) kept += singular[i] > kPseudoInverseCutoff ? 1 : 0;
+    whitening_.resize(kept, p);
+    log_normaliser_ = 0.0;
+    for (int i = 0, row = 0; i < p; ++i) {
+      if (singular[i] > kPseudoInverseCutoff) {
+        whitening_.row(row++) = eigen.eigenvectors().col(i).transpose() / std::sqrt(singular[i]);
+      }
+      const double scaled = 2.0 * std::numbers::pi * singular[i];
+      if (scaled > kPseudoInverseCutoff) log_normaliser_ -= std::log(scaled);
+    }
+    shape_ = Shape::kGaussian;
+    whitening_is_lower_triangular_ = false;
+    return;
+  }
+
+  if (m < 2) {
+    shape_ = Shape::kUnit;
+    whitening_.setIdentity(p, p);
+    log_normaliser_ = -0.5 * p * kLogTwoPi;
+    return;
+  }
+  // Σ̃ = Σ + λI with Σ the unbiased covariance; λ > 0 keeps Σ̃ positive definite
+  // even for m <= p or duplicate samples.
+  Eigen::MatrixXd sigma = scatter_ / (m - 1.0);
+  sigma.diagonal().array() += config.regularization;
+  const Eigen::LLT<Eigen::MatrixXd> cholesky(sigma);
+  const Eigen::MatrixXd lower = cholesky.matrixL();
+  whitening_ = lower.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(p, p));
+  // log G = −½ d² − Σ log L_ii − (p/2) log 2π: the log domain avoids the
+  // underflow of a product of 48 Gaussian factors.
+  log_normaliser_ = -lower.diagonal().array().log().sum() - 0.5 * p * kLogTwoPi;
+  shape_ = Shape::kGaussian;
+}
+
+double Component::SquaredMahalanobis(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  double out = 0.0;
+  const Eigen::VectorXd contiguous = x;
+  SquaredMahalanobis(contiguous.data(), 1, 1, &out);
+  return out;
+}
+
+void Component::SquaredMahalanobis(const double* points, int count, int stride, double* out) const {
+  const WhiteningView view{whitening_.data(), static_cast<int>(whitening_.rows()),
+                           static_cast<int>(mean_.size()), whitening_is_lower_triangular_,
+                           centre_.data()};
+  SquaredWhitenedDistances(view, points, count, stride, out);
+}
+
+double Component::LogDensityFromSquaredDistance(double squared_distance) const {
+  if (shape_ == Shape::kHit) {
+    return squared_distance < kHitRadiusSquared ? log_normaliser_
+                                                : -std::numeric_limits<double>::infinity();
+  }
+  return log_normaliser_ - 0.5 * squared_distance;
+}
+
+std::span<const double> Component::LogDensityColumn(const Dataset& data) {
+  const int done = static_cast<int>(log_density_column_.size());
+  const int n = data.size();
+  if (done < n) {
+    log_density_column_.resize(n);
+    double* out = log_density_column_.data() + done;
+    SquaredMahalanobis(data.data() + done, n - done, data.stride(), out);
+    for (int i = 0; i < n - done; ++i) out[i] = LogDensityFromSquaredDistance(out[i]);
+  }
+  return log_density_column_;
+}
+
+}  // namespace relmap::cmm

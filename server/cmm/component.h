@@ -1,0 +1,103 @@
+// One Gaussian component C_k of a class mixture (§3.1): its samples, running
+// mean and scatter, weight, and the cached factor that turns a point into its
+// Mahalanobis distance and log-density (§3.2).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "cmm/config.h"
+#include "cmm/dataset.h"
+#include "cmm/partition.h"
+
+namespace relmap::cmm {
+
+class Component {
+ public:
+  // How the component evaluates densities; decided by Refresh().
+  enum class Shape {
+    kGaussian,  // full factor: corrected Σ̃ = Σ + λI, or the paper2018 pseudo-inverse
+    kUnit,      // m < 2 (corrected): Σ = I centred on the mean, the paper's G(s, cI)
+    kHit,       // paper2018 "identity" component: a peak within ‖x − μ‖² < 1e-4, else 0
+  };
+
+  // A component holding the samples `indices` of `data` (in that order; the
+  // first is its "first sample"), all of class `label`.
+  static Component FromSamples(int label, std::span<const int> indices, const Dataset& data,
+                               const CmmConfig& config);
+  // A component restored from its running state, bit for bit.
+  static Component FromState(int label, std::vector<int> indices, Eigen::VectorXd mean,
+                             Eigen::MatrixXd scatter, double weight, const Dataset& data,
+                             const CmmConfig& config);
+  // The union of two components of one class (paper MERGE): samples of `a` then `b`.
+  static Component Union(const Component& a, const Component& b, const Dataset& data,
+                         const CmmConfig& config);
+
+  // Appends sample `index` (Welford update of mean and scatter) and refactors.
+  void AddSample(int index, const Dataset& data, const CmmConfig& config);
+
+  int label() const { return label_; }
+  int size() const { return static_cast<int>(indices_.size()); }
+  const std::vector<int>& indices() const { return indices_; }
+  const Eigen::VectorXd& mean() const { return mean_; }
+  // Σ_i (x_i − μ)(x_i − μ)ᵀ, the centred scatter of the samples.
+  const Eigen::MatrixXd& scatter() const { return scatter_; }
+  // The point densities are centred on: the mean, or the first sample (switch
+  // first_sample_mean, m <= 4).
+  const Eigen::VectorXd& centre() const { return centre_; }
+  Shape shape() const { return shape_; }
+
+  double weight() const { return weight_; }
+  void set_weight(double weight) { weight_ = weight; }
+
+  // d²(x) = (x − μ)ᵀ Σ̃⁻¹ (x − μ) of one point (Euclidean for kUnit and kHit).
+  double SquaredMahalanobis(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // d² of the rows [first, first + count) of a column-major matrix with leading
+  // dimension `stride`; same values as SquaredMahalanobis, whatever the batch.
+  void SquaredMahalanobis(const double* points, int count, int stride, double* out) const;
+  // log G_k(x) from d²(x) (§3.2); −∞ where a kHit component gives 0.
+  double LogDensityFromSquaredDistance(double squared_distance) const;
+
+  // The 1-NN graph of the component's samples (positions within indices()),
+  // for SPLIT. Built from scratch on first use, then kept up to date by
+  // AddSample in O(m·p) instead of O(m²·p).
+  const NearestNeighbourGraph& NearestNeighbours(const Dataset& data);
+  // Installs a graph known from elsewhere (a split half inherits its parent's:
+  // every sample's nearest neighbour lies in its own half).
+  void AdoptNearestNeighbours(NearestNeighbourGraph graph) { nearest_ = std::move(graph); }
+
+  // The log-densities of the dataset's samples under this component, one per
+  // sample: the component's column of the n×K cache (§3.8). Filled lazily:
+  // only rows added since the last call are computed; any change to the
+  // component clears it.
+  std::span<const double> LogDensityColumn(const Dataset& data);
+
+ private:
+  Component(int label, int dimension);
+  // Updates the 1-NN graph for a sample about to be appended.
+  void AddToNearestNeighbours(int index, const Dataset& data);
+  // Recomputes centre, shape, whitening matrix and log normaliser.
+  void Refresh(const Dataset& data, const CmmConfig& config);
+
+  int label_;
+  std::vector<int> indices_;
+  Eigen::VectorXd mean_;
+  Eigen::MatrixXd scatter_;
+  double weight_ = 1.0;
+
+  Eigen::VectorXd centre_;
+  Shape shape_ = Shape::kUnit;
+  // W with d² = ‖W(x − centre)‖²: L⁻¹ (lower triangular) or Λ^{-1/2}Vᵀ of the
+  // kept eigenpairs (paper2018); row-major for the kernel.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> whitening_;
+  bool whitening_is_lower_triangular_ = true;
+  // log G = log_normaliser_ − d²/2 (kGaussian, kUnit); the peak value (kHit).
+  double log_normaliser_ = 0.0;
+
+  std::vector<double> log_density_column_;
+  NearestNeighbourGraph nearest_;  // empty = not built yet
+};
+
+}  // namespace relmap::cmm

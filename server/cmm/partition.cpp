@@ -1,0 +1,142 @@
+// 1-NN graph, union-find, and centroid agglomeration down to two groups (§3.6).
+#include "cmm/partition.h"
+
+#include <limits>
+#include <numeric>
+
+namespace relmap::cmm {
+namespace {
+
+class UnionFind {
+ public:
+  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int Find(int i) {
+    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+    return i;
+  }
+  // The lower root survives, so roots are the smallest member of their set.
+  void Join(int a, int b) {
+    a = Find(a);
+    b = Find(b);
+    if (a == b) return;
+    if (b < a) std::swap(a, b);
+    parent_[b] = a;
+  }
+
+ private:
+  std::vector<int> parent_;
+};
+
+// Agglomerates groups by closest centroids until two remain. `group` maps each
+// sample to a group id in [0, groups); returns the surviving group of each id.
+std::vector<int> MergeClosestCentroids(const Eigen::MatrixXd& points, const std::vector<int>& group,
+                                       int groups) {
+  const int p = static_cast<int>(points.rows());
+  Eigen::MatrixXd centroid = Eigen::MatrixXd::Zero(p, groups);
+  std::vector<double> count(groups, 0.0);
+  for (int i = 0; i < static_cast<int>(group.size()); ++i) {
+    centroid.col(group[i]) += points.col(i);
+    count[group[i]] += 1.0;
+  }
+  for (int g = 0; g < groups; ++g) centroid.col(g) /= count[g];
+
+  std::vector<int> survivor(groups);
+  std::iota(survivor.begin(), survivor.end(), 0);
+  std::vector<bool> active(groups, true);
+  // Each active group's closest active partner with a higher id; a pair is kept
+  // once, at its lower id, which makes ties resolve to the lowest pair.
+  std::vector<int> partner(groups, -1);
+  std::vector<double> distance(groups, std::numeric_limits<double>::infinity());
+  auto refresh = [&](int g) {
+    partner[g] = -1;
+    distance[g] = std::numeric_limits<double>::infinity();
+    for (int h = g + 1; h < groups; ++h) {
+      if (!active[h]) continue;
+      const double d = (centroid.col(g) - centroid.col(h)).squaredNorm();
+      if (d < distance[g]) distance[g] = d, partner[g] = h;
+    }
+  };
+  for (int g = 0; g < groups; ++g) refresh(g);
+
+  for (int remaining = groups; remaining > 2; --remaining) {
+    int a = -1;
+    for (int g = 0; g < groups; ++g) {
+      if (active[g] && partner[g] >= 0 && (a < 0 || distance[g] < distance[a])) a = g;
+    }
+    const int b = partner[a];
+    centroid.col(a) =
+        (centroid.col(a) * count[a] + centroid.col(b) * count[b]) / (count[a] + count[b]);
+    count[a] += count[b];
+    active[b] = false;
+    for (int g = 0; g < groups; ++g) {
+      if (survivor[g] == b) survivor[g] = a;
+    }
+    // Groups below `a` may now be closest to the moved centroid of `a`; groups
+    // that pointed at `a` or `b` must look again.
+    for (int g = 0; g < groups; ++g) {
+      if (!active[g] || g == a) continue;
+      if (partner[g] == a || partner[g] == b) {
+        refresh(g);
+      } else if (g < a) {
+        const double d = (centroid.col(g) - centroid.col(a)).squaredNorm();
+        if (d < distance[g] || (d == distance[g] && a < partner[g]))
+          distance[g] = d, partner[g] = a;
+      }
+    }
+    refresh(a);
+  }
+  return survivor;
+}
+
+}  // namespace
+
+double SquaredDistance(const double* a, int stride_a, const double* b, int stride_b, int p) {
+  double sum = 0.0;
+  for (int k = 0; k < p; ++k) {
+    const double d =
+        a[static_cast<std::ptrdiff_t>(k) * stride_a] - b[static_cast<std::ptrdiff_t>(k) * stride_b];
+    sum += d * d;
+  }
+  return sum;
+}
+
+NearestNeighbourGraph NearestNeighbours(const Eigen::MatrixXd& points) {
+  const int n = static_cast<int>(points.cols());
+  const int p = static_cast<int>(points.rows());
+  NearestNeighbourGraph graph{std::vector<int>(n, -1),
+                              std::vector<double>(n, std::numeric_limits<double>::infinity())};
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      const double d = SquaredDistance(points.col(i).data(), 1, points.col(j).data(), 1, p);
+      if (d < graph.squared_distance[i]) graph.squared_distance[i] = d, graph.nearest[i] = j;
+      if (d < graph.squared_distance[j]) graph.squared_distance[j] = d, graph.nearest[j] = i;
+    }
+  }
+  return graph;
+}
+
+std::vector<int> PartitionInTwo(const Eigen::MatrixXd& points, const std::vector<int>& nearest) {
+  const int n = static_cast<int>(points.cols());
+  if (n < 2) return {};
+  UnionFind sets(n);
+  for (int i = 0; i < n; ++i) sets.Join(i, nearest[i]);
+
+  // Number the sets by their smallest member: sample 0 is in set 0.
+  std::vector<int> set_of_root(n, -1);
+  std::vector<int> group(n);
+  int groups = 0;
+  for (int i = 0; i < n; ++i) {
+    const int root = sets.Find(i);
+    if (set_of_root[root] < 0) set_of_root[root] = groups++;
+    group[i] = set_of_root[root];
+  }
+  if (groups == 1) return {};
+  if (groups > 2) {
+    const std::vector<int> survivor = MergeClosestCentroids(points, group, groups);
+    // Set 0 always survives (a merge keeps the lower id); the other survivor is group 1.
+    for (int& g : group) g = survivor[g] == 0 ? 0 : 1;
+  }
+  return group;
+}
+
+}  // namespace relmap::cmm
