@@ -1,0 +1,62 @@
+// Confidence, choice map and target sampling.
+#include "exploration/choice.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "exploration/uncertainty.h"
+
+namespace relmap::exploration {
+
+Eigen::VectorXd Confidence(const cmm::Evaluation& evaluation, ConfidenceMode mode) {
+  if (mode == ConfidenceMode::kMembership) return evaluation.nearest_log_membership.array().exp();
+  // c = exp(−½ d²) of the nearest component: 1 at its mean, 0 far from all data
+  // (and with no component at all, d² = +∞).
+  return (-0.5 * evaluation.nearest_squared_mahalanobis.array()).exp();
+}
+
+Eigen::VectorXd UncertaintyMap(const Eigen::VectorXd& relevance, int moveable_samples,
+                               int non_moveable_samples, bool uncertainty_bug) {
+  Eigen::VectorXd u(relevance.size());
+  for (Eigen::Index i = 0; i < relevance.size(); ++i) {
+    u[i] = Uncertainty(relevance[i], moveable_samples, non_moveable_samples, uncertainty_bug);
+  }
+  return u;
+}
+
+Eigen::VectorXd ChoiceMap(const Eigen::VectorXd& uncertainty, const Eigen::VectorXd& confidence,
+                          bool paper_quirks) {
+  assert(uncertainty.size() == confidence.size());
+  Eigen::VectorXd w = uncertainty.array() * (1.0 - confidence.array());
+  if (paper_quirks) w = (w.array() < kPaperChoiceFloor).select(0.0, w);
+  const double total = w.sum();
+  if (!(total > 0.0)) {
+    return Eigen::VectorXd::Constant(
+        w.size(), 1.0 / static_cast<double>(std::max<Eigen::Index>(1, w.size())));
+  }
+  return w / total;
+}
+
+int DrawTarget(const Eigen::VectorXd& choice, int interactions, bool paper_quirks,
+               cmm::Random& random) {
+  const auto n = static_cast<std::size_t>(choice.size());
+  assert(n > 0);
+  if (paper_quirks && interactions < kPaperUniformChoices) {
+    return static_cast<int>(random.UniformIndex(n > 1 ? n - 1 : 1));
+  }
+  // Inverse transform sampling on the cumulative sums.
+  const double u = random.UniformUnit() * choice.sum();
+  double cumulative = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    cumulative += choice[static_cast<Eigen::Index>(i)];
+    if (u < cumulative) return static_cast<int>(i);
+  }
+  // Rounding left u at the very top: the last index with positive weight.
+  for (std::size_t i = n; i-- > 0;) {
+    if (choice[static_cast<Eigen::Index>(i)] > 0.0) return static_cast<int>(i);
+  }
+  return static_cast<int>(n - 1);
+}
+
+}  // namespace relmap::exploration

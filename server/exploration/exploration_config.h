@@ -1,0 +1,41 @@
+// Configuration of exploration (§4): how uncertainty, confidence and the choice
+// map are computed, with the authors' variations as named switches.
+#pragma once
+
+#include "cmm/config.h"
+
+namespace relmap::exploration {
+
+enum class ConfidenceMode {
+  // c(x) = exp(−½ d²_k*(x)) of the nearest component of either class: what the
+  // authors' code computed, and relmap's default.
+  kNearestPeak,
+  // The paper's literal wording: the membership probability (eq. comp_est) of
+  // the nearest component within its class. Frozen at 1 while a class has one
+  // component; kept for study only.
+  kMembership,
+};
+
+struct ExplorationConfig {
+  ConfidenceMode confidence = ConfidenceMode::kNearestPeak;
+  // The later published tag (§4.1): ties of the class counts go to the other
+  // branch, and that branch evaluates f(p − 1) instead of f(1 − p).
+  bool uncertainty_bug = false;
+  // Defect 6 (paper2018): choice values below 1e-3 are zeroed, and the first
+  // kPaperUniformChoices targets are drawn uniformly with an off-by-one range
+  // that never picks the last supervoxel.
+  bool paper_choice_quirks = false;
+
+  static ExplorationConfig ForVariant(cmm::Variant variant) {
+    ExplorationConfig config;
+    config.paper_choice_quirks = variant == cmm::Variant::kPaper2018;
+    return config;
+  }
+};
+
+// How many targets the 2018 code drew uniformly before using the choice map.
+inline constexpr int kPaperUniformChoices = 11;
+// Choice values the 2018 code zeroed.
+inline constexpr double kPaperChoiceFloor = 1e-3;
+
+}  // namespace relmap::exploration
