@@ -1,0 +1,273 @@
+// relmap-cmm: the classifier on its own, for researchers and side-by-side
+// comparisons. Trains online on a CSV stream (or lets the choice map pick from
+// it, --active), then prints one JSON object with the model, test scores and
+// latencies.
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cmm/collaborative_mixture_models.h"
+#include "cmm/log_math.h"
+#include "cmm/random.h"
+#include "datasets/csv.h"
+#include "exploration/choice.h"
+#include "exploration/metrics.h"
+#include "tools/cmm/latency.h"
+
+namespace relmap::tools {
+namespace {
+
+constexpr std::string_view kUsage =
+    "usage: relmap-cmm --train train.csv [--test test.csv] [--variant corrected|paper2018]\n"
+    "                  [--alpha 0.25] [--regularization 1e-6] [--seed N] [--active]\n"
+    "                  [--budget N] [--curve N]\n"
+    "  CSV rows: label,f1,...,fp (label 0 or 1; a header line is allowed).\n"
+    "  --active   the choice map picks each next sample from the training pool\n"
+    "  --budget   with --active: stop after N samples (default: the whole pool)\n"
+    "  --curve    score the test set every N samples (a learning curve)\n";
+
+struct Options {
+  std::string train;
+  std::string test;
+  cmm::CmmConfig config;
+  bool active = false;
+  int budget = -1;
+  int curve_every = 0;
+};
+
+[[noreturn]] void Fail(const std::string& message) {
+  std::fprintf(stderr, "relmap-cmm: %s\n", message.c_str());
+  std::exit(2);
+}
+
+double ParseNumber(std::string_view flag, const char* text) {
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != '\0') Fail(fmt::format("{} expects a number, got '{}'", flag, text));
+  return value;
+}
+
+Options ParseArguments(int argc, char** argv) {
+  Options options;
+  std::string variant = "corrected";
+  std::optional<double> alpha, regularization, seed;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view flag = argv[i];
+    const auto value = [&]() -> const char* {
+      if (i + 1 >= argc) Fail(fmt::format("{} needs a value\n{}", flag, kUsage));
+      return argv[++i];
+    };
+    if (flag == "--train")
+      options.train = value();
+    else if (flag == "--test")
+      options.test = value();
+    else if (flag == "--variant")
+      variant = value();
+    else if (flag == "--alpha")
+      alpha = ParseNumber(flag, value());
+    else if (flag == "--regularization")
+      regularization = ParseNumber(flag, value());
+    else if (flag == "--seed")
+      seed = ParseNumber(flag, value());
+    else if (flag == "--active")
+      options.active = true;
+    else if (flag == "--budget")
+      options.budget = static_cast<int>(ParseNumber(flag, value()));
+    else if (flag == "--curve")
+      options.curve_every = static_cast<int>(ParseNumber(flag, value()));
+    else if (flag == "--help" || flag == "-h") {
+      std::fputs(kUsage.data(), stdout);
+      std::exit(0);
+    } else {
+      Fail(fmt::format("unknown argument '{}'\n{}", flag, kUsage));
+    }
+  }
+  if (options.train.empty()) Fail(fmt::format("--train is required\n{}", kUsage));
+  const auto parsed = cmm::ParseVariant(variant);
+  if (!parsed.ok()) Fail(parsed.status().message());
+  options.config = cmm::CmmConfig::ForVariant(*parsed);
+  if (alpha) options.config.alpha = *alpha;
+  if (regularization) options.config.regularization = *regularization;
+  if (seed) {
+    if (*seed < 0) Fail("--seed must be a non-negative integer");
+    options.config.seed = static_cast<std::uint64_t>(*seed);
+  }
+  if (const Status status = cmm::Validate(options.config); !status.ok()) Fail(status.message());
+  if (options.curve_every < 0 || (options.active && options.budget == 0)) {
+    Fail("--curve and --budget must be positive");
+  }
+  return options;
+}
+
+datasets::LabelledSamples Load(const std::string& path) {
+  auto samples = datasets::ReadLabelledCsv(path);
+  if (!samples.ok()) Fail(samples.status().message());
+  return std::move(samples).value();
+}
+
+std::string Number(std::optional<double> value) {
+  return value && std::isfinite(*value) ? fmt::format("{:.6g}", *value) : "null";
+}
+
+std::string ScoresJson(const exploration::Scores& s) {
+  return fmt::format(R"({{"precision":{},"recall":{},"accuracy":{}}})", Number(s.precision),
+                     Number(s.recall), Number(s.accuracy));
+}
+
+std::string LatencyJson(const LatencyRecorder::Summary& s) {
+  return fmt::format(R"({{"p50":{:.1f},"p99":{:.1f},"max":{:.1f},"count":{}}})", s.p50, s.p99,
+                     s.max, s.count);
+}
+
+struct TestScores {
+  exploration::Scores soft;
+  exploration::Scores thresholded;
+  double accuracy_at_half = 0.0;  // fraction of samples on the right side of 0.5
+};
+
+TestScores Score(const cmm::CollaborativeMixtureModels& model,
+                 const datasets::LabelledSamples& test) {
+  const Eigen::VectorXd p = model.Predict(test.features);
+  const std::vector<bool> moveable(test.labels.begin(), test.labels.end());
+  TestScores scores{exploration::SoftScores(p, moveable),
+                    exploration::ThresholdedSoftScores(p, moveable), 0.0};
+  int right = 0;
+  for (Eigen::Index i = 0; i < p.size(); ++i) right += (p[i] >= 0.5) == moveable[i] ? 1 : 0;
+  scores.accuracy_at_half = static_cast<double>(right) / static_cast<double>(p.size());
+  return scores;
+}
+
+class Run {
+ public:
+  Run(Options options, datasets::LabelledSamples train,
+      std::optional<datasets::LabelledSamples> test)
+      : options_(std::move(options)),
+        train_(std::move(train)),
+        test_(std::move(test)),
+        model_(cmm::CollaborativeMixtureModels::Create(options_.config,
+                                                       static_cast<int>(train_.features.cols()))
+                   .value()),
+        // The target draws get their own stream, so that --active leaves the
+        // classifier's re-check stream as it is online.
+        sampler_(options_.config.seed ^ 0x5eed5eed5eed5eedULL) {}
+
+  void Execute() {
+    if (options_.active) {
+      ExploreThePool();
+    } else {
+      for (Eigen::Index i = 0; i < train_.features.rows(); ++i) Learn(static_cast<int>(i));
+    }
+  }
+
+  std::string Report() {
+    std::string curve;
+    for (const std::string& point : curve_) curve += (curve.empty() ? "" : ",") + point;
+    std::string test = "null";
+    if (test_) {
+      const TestScores s = Score(model_, *test_);
+      test = fmt::format(
+          R"({{"samples":{},"soft":{},"thresholded_soft":{},"accuracy_at_0_5":{:.6g}}})",
+          test_->labels.size(), ScoresJson(s.soft), ScoresJson(s.thresholded), s.accuracy_at_half);
+    }
+    const LatencyRecorder& predict = test_ ? PredictLatencyOn(*test_) : PredictLatencyOn(train_);
+    return fmt::format(
+        R"({{"variant":"{}","alpha":{},"regularization":{},"seed":{},"mode":"{}","dimension":{},)"
+        R"("samples":[{},{}],"components":[{},{}],"splits":{},"merges":{},"log_likelihood":{},)"
+        R"("test":{},"latency_us":{{"update":{},"predict":{},"choice":{}}},"curve":[{}]}})",
+        cmm::VariantName(options_.config.variant), options_.config.alpha,
+        options_.config.regularization, options_.config.seed, options_.active ? "active" : "online",
+        model_.dimension(), model_.sample_count(0), model_.sample_count(1),
+        model_.component_count(0), model_.component_count(1), model_.splits(), model_.merges(),
+        Number(model_.LogLikelihood()), test, LatencyJson(update_.Summarise()),
+        LatencyJson(predict.Summarise()), LatencyJson(choice_.Summarise()), curve);
+  }
+
+ private:
+  void Learn(int row) {
+    const auto report = update_.Time(
+        [&] { return model_.Add(train_.features.row(row).transpose(), train_.labels[row]); });
+    if (!report.ok())
+      Fail(fmt::format("{}: sample {}: {}", options_.train, row + 1, report.status().message()));
+    const int n = model_.dataset().size();
+    if (test_ && options_.curve_every > 0 && n % options_.curve_every == 0) {
+      const TestScores s = Score(model_, *test_);
+      curve_.push_back(fmt::format(
+          R"({{"samples":{},"components":[{},{}],"soft_accuracy":{},"thresholded_accuracy":{},"accuracy_at_0_5":{:.6g}}})",
+          n, model_.component_count(0), model_.component_count(1), Number(s.soft.accuracy),
+          Number(s.thresholded.accuracy), s.accuracy_at_half));
+    }
+  }
+
+  // The paper's exploration on a fixed pool: each step scores the remaining
+  // samples, builds the choice map and lets it pick the next one to label.
+  void ExploreThePool() {
+    std::vector<int> pool(static_cast<std::size_t>(train_.features.rows()));
+    for (std::size_t i = 0; i < pool.size(); ++i) pool[i] = static_cast<int>(i);
+    const auto exploration = exploration::ExplorationConfig::ForVariant(options_.config.variant);
+    const int budget = options_.budget > 0
+                           ? std::min<int>(options_.budget, static_cast<int>(pool.size()))
+                           : static_cast<int>(pool.size());
+    Eigen::MatrixXd candidates;
+    for (int step = 0; step < budget; ++step) {
+      const int pick = choice_.Time([&] {
+        candidates.resize(static_cast<Eigen::Index>(pool.size()), train_.features.cols());
+        for (std::size_t j = 0; j < pool.size(); ++j) {
+          candidates.row(static_cast<Eigen::Index>(j)) = train_.features.row(pool[j]);
+        }
+        const cmm::Evaluation e = model_.Evaluate(candidates);
+        const Eigen::VectorXd u =
+            exploration::UncertaintyMap(e.relevance, model_.sample_count(1), model_.sample_count(0),
+                                        exploration.uncertainty_bug);
+        const Eigen::VectorXd choice = exploration::ChoiceMap(
+            u, exploration::Confidence(e, exploration.confidence), exploration.paper_choice_quirks);
+        return exploration::DrawTarget(choice, step, exploration.paper_choice_quirks, sampler_);
+      });
+      Learn(pool[static_cast<std::size_t>(pick)]);
+      pool[static_cast<std::size_t>(pick)] = pool.back();
+      pool.pop_back();
+    }
+  }
+
+  LatencyRecorder& PredictLatencyOn(const datasets::LabelledSamples& samples) {
+    const Eigen::Index n = std::min<Eigen::Index>(samples.features.rows(), 2000);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::MatrixXd one = samples.features.row(i);
+      predict_.Time([&] { return model_.Predict(one); });
+    }
+    return predict_;
+  }
+
+  Options options_;
+  datasets::LabelledSamples train_;
+  std::optional<datasets::LabelledSamples> test_;
+  cmm::CollaborativeMixtureModels model_;
+  cmm::Random sampler_;
+  LatencyRecorder update_, predict_, choice_;
+  std::vector<std::string> curve_;
+};
+
+}  // namespace
+}  // namespace relmap::tools
+
+int main(int argc, char** argv) {
+  using namespace relmap;
+  tools::Options options = tools::ParseArguments(argc, argv);
+  datasets::LabelledSamples train = tools::Load(options.train);
+  std::optional<datasets::LabelledSamples> test;
+  if (!options.test.empty()) {
+    test = tools::Load(options.test);
+    if (test->features.cols() != train.features.cols()) {
+      tools::Fail(fmt::format("{} has {} features per row, {} has {}", options.test,
+                              test->features.cols(), options.train, train.features.cols()));
+    }
+  }
+  tools::Run run(std::move(options), std::move(train), std::move(test));
+  run.Execute();
+  std::printf("%s\n", run.Report().c_str());
+  return 0;
+}

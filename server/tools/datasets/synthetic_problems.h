@@ -1,0 +1,44 @@
+// Seeded, labelled toy problems for the classifier: the non-convex 2-d classics
+// (two moons, XOR blobs, concentric rings), optionally lifted into p dimensions.
+// Used by the tests, the benchmarks and the demo stream of `relmap-cmm`.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "common/status.h"
+
+namespace relmap::datasets {
+
+struct LabelledSamples {
+  Eigen::MatrixXd features;  // one sample per row
+  std::vector<int> labels;   // 0 or 1, one per row
+};
+
+enum class Problem { kTwoMoons, kXorBlobs, kConcentricRings };
+
+StatusOr<Problem> ParseProblem(std::string_view name);
+
+struct ProblemOptions {
+  Problem problem = Problem::kTwoMoons;
+  int samples = 1000;
+  // Standard deviation of the Gaussian noise added to the 2-d points.
+  double noise = 0.1;
+  // p >= 2: the 2-d points are placed on a random 2-d plane of R^p (an
+  // orthonormal basis drawn from the seed) and every dimension gets
+  // `ambient_noise` of isotropic noise, so that the problem is full rank.
+  int dimension = 2;
+  double ambient_noise = 0.02;
+  // Seed of the samples; the plane of the embedding has its own seed, so that
+  // training and test sets drawn with different seeds share one embedding.
+  std::uint64_t seed = 1;
+  std::uint64_t embedding_seed = 0;
+};
+
+// Each sample's class is drawn with probability 1/2; the same options give the same
+// samples on every machine (the generator draws from relmap's own RNG).
+LabelledSamples MakeProblem(const ProblemOptions& options);
+
+}  // namespace relmap::datasets
