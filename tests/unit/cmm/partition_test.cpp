@@ -1,0 +1,47 @@
+// The partition of SPLIT (§3.6): 1-NN graph components, merged down to two.
+#include "cmm/partition.h"
+
+#include <gtest/gtest.h>
+
+namespace relmap::cmm {
+namespace {
+
+Eigen::MatrixXd Columns(std::initializer_list<std::pair<double, double>> points) {
+  Eigen::MatrixXd m(2, static_cast<Eigen::Index>(points.size()));
+  int j = 0;
+  for (const auto& [x, y] : points) m.col(j++) << x, y;
+  return m;
+}
+
+TEST(PartitionInTwo, SeparatesTwoClusters) {
+  const auto points = Columns({{0, 0}, {5, 5}, {0.1, 0}, {5.1, 5}, {0, 0.1}});
+  EXPECT_EQ(PartitionInTwo(points), (std::vector<int>{0, 1, 0, 1, 0}));
+}
+
+TEST(PartitionInTwo, LeavesAConnectedNearestNeighbourGraphWhole) {
+  // Evenly spaced points: each links to a neighbour, the graph is one chain.
+  const auto points = Columns({{0, 0}, {1, 0}, {2, 0}, {3, 0}, {4, 0}});
+  EXPECT_TRUE(PartitionInTwo(points).empty());
+}
+
+TEST(PartitionInTwo, MergesTheTwoClosestOfThreeSets) {
+  // Pairs at x = 0, 1 and 10: three 1-NN components; the centroids at 0 and 1
+  // are closest, so those two pairs form one group.
+  const auto points = Columns({{0, 0}, {0.01, 0}, {1, 0}, {1.01, 0}, {10, 0}, {10.01, 0}});
+  EXPECT_EQ(PartitionInTwo(points), (std::vector<int>{0, 0, 0, 0, 1, 1}));
+}
+
+TEST(PartitionInTwo, PutsTheFirstSampleInGroupZero) {
+  const auto points = Columns({{10, 0}, {10.01, 0}, {0, 0}, {0.01, 0}, {1, 0}, {1.01, 0}});
+  EXPECT_EQ(PartitionInTwo(points), (std::vector<int>{0, 0, 1, 1, 1, 1}));
+}
+
+TEST(PartitionInTwo, DuplicatePointsDoNotSplit) {
+  const auto points = Columns({{1, 1}, {1, 1}, {1, 1}});
+  EXPECT_TRUE(PartitionInTwo(points).empty());
+}
+
+TEST(PartitionInTwo, NeedsTwoPoints) { EXPECT_TRUE(PartitionInTwo(Columns({{1, 1}})).empty()); }
+
+}  // namespace
+}  // namespace relmap::cmm

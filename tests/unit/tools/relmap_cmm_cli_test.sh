@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# relmap-cmm as a user runs it: exit codes, error messages, and the JSON report.
+set -u
+cmm=$1
+dataset=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+failures=0
+expect() {  # expect <name> <wanted exit code> <wanted text in output> <command...>
+  local name=$1 code=$2 text=$3
+  shift 3
+  local out
+  out=$("$@" 2>&1)
+  local got=$?
+  if [ "$got" -ne "$code" ] || ! grep -qF -- "$text" <<<"$out"; then
+    echo "FAIL $name: exit $got (wanted $code), output: $out"
+    failures=$((failures + 1))
+  else
+    echo "ok   $name"
+  fi
+}
+
+printf '1,0.5,2\n0,1\n' >"$dir/ragged.csv"
+printf '1,0.5\n0,abc\n' >"$dir/text.csv"
+printf '1,0.5\n3,1\n' >"$dir/label.csv"
+printf '' >"$dir/empty.csv"
+printf '1,0.5\n0,1\n' >"$dir/one-feature.csv"
+"$dataset" --problem moons --samples 300 --dimension 3 --seed 1 >"$dir/train.csv"
+"$dataset" --problem moons --samples 200 --dimension 3 --seed 2 >"$dir/test.csv"
+
+expect ragged 2 "ragged.csv:2: row has 1 features" "$cmm" --train "$dir/ragged.csv"
+expect non-numeric 2 "text.csv:2: field 2 'abc' is not a number" "$cmm" --train "$dir/text.csv"
+expect label 2 "label.csv:2: label '3' is not 0 or 1" "$cmm" --train "$dir/label.csv"
+expect empty 2 "empty.csv: no data row" "$cmm" --train "$dir/empty.csv"
+expect missing 2 "cannot open" "$cmm" --train "$dir/none.csv"
+expect no-train 2 "--train is required" "$cmm"
+expect bad-alpha 2 "alpha must lie in [0, 1]" "$cmm" --train "$dir/train.csv" --alpha 3
+expect bad-variant 2 "unknown classifier variant" "$cmm" --train "$dir/train.csv" --variant x
+expect dimension-mismatch 2 "one-feature.csv has 1 features per row" "$cmm" --train "$dir/train.csv" --test "$dir/one-feature.csv"
+expect online 0 '"mode":"online"' "$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --curve 100
+expect active 0 '"mode":"active","dimension":3,"samples":[' "$cmm" --train "$dir/train.csv" --active --budget 50 --seed 3
+expect paper 0 '"variant":"paper2018"' "$cmm" --train "$dir/train.csv" --variant paper2018
+
+# Same seed, same report (latencies aside).
+a=$("$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --active --seed 9 | sed 's/"latency_us".*"curve"/"curve"/')
+b=$("$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --active --seed 9 | sed 's/"latency_us".*"curve"/"curve"/')
+if [ "$a" = "$b" ]; then echo "ok   reproducible"; else echo "FAIL reproducible"; failures=$((failures + 1)); fi
+
+exit $((failures > 0))
