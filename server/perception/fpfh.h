@@ -1,0 +1,41 @@
+// The 33 FPFH values of each supervoxel's feature (ALGORITHMS.md §2), in two schemes: the
+// exact per-union computation and the shared per-voxel one (perception_config.h).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "perception/perception_config.h"
+#include "perception/supervoxels.h"
+
+namespace relmap::perception {
+
+inline constexpr int kFpfhBins = 11;
+inline constexpr int kFpfhDims = 3 * kFpfhBins;
+
+// PCL's FPFH (FPFHEstimation) at every point of a cloud with itself as search surface,
+// divided by 100 so that each 11-bin block sums to 1 (a point with no neighbour in `radius`
+// has an all-zero row). One kd-tree, one radius search and one SPFH per point, parallel
+// over `threads`. Rows follow `positions`; normals must be finite.
+Eigen::MatrixXf PointFpfh(const std::vector<Eigen::Vector3f>& positions,
+                          const std::vector<Eigen::Vector3f>& normals, float radius, int threads);
+
+// N x 33: per supervoxel, the mean of the voxel FPFH (divided by 100) over the voxels of the
+// supervoxel and of its neighbours. Voxels whose VCCS normal is not finite (a voxel with
+// fewer than three voxels around it) are left out; a supervoxel whose union has none left
+// gets a NaN row, which the frame counts as non-finite.
+Eigen::MatrixXd SupervoxelFpfh(const Segmentation& segmentation, FpfhScheme scheme, float radius,
+                               int threads);
+
+// The two schemes behind SupervoxelFpfh.
+Eigen::MatrixXd SupervoxelFpfhExactUnion(const Segmentation& segmentation, float radius,
+                                         int threads);
+Eigen::MatrixXd SupervoxelFpfhSharedVoxels(const Segmentation& segmentation, float radius,
+                                           int threads);
+
+// The voxels of `supervoxel` and its neighbours with a finite normal.
+void CollectUnionVoxels(const Segmentation& segmentation, const Supervoxel& supervoxel,
+                        std::vector<Eigen::Vector3f>& positions,
+                        std::vector<Eigen::Vector3f>& normals);
+
+}  // namespace relmap::perception

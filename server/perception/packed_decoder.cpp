@@ -1,0 +1,44 @@
+// The packed binary layout of the API: 16 bytes per point (ALGORITHMS-independent, see decode.h).
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "perception/decode.h"
+
+namespace relmap::perception {
+
+StatusOr<Cloud> DecodePacked(std::string_view bytes, std::uint32_t width, std::uint32_t height,
+                             const DecodeLimits& limits) {
+  const long long count = static_cast<long long>(width) * height;
+  if (width == 0 || height == 0) {
+    return InvalidArgumentError("packed cloud: width and height must be > 0 (got " +
+                                std::to_string(width) + "x" + std::to_string(height) + ")");
+  }
+  if (count > limits.max_points) {
+    return InvalidArgumentError("packed cloud: " + std::to_string(count) +
+                                " points declared, more than the " +
+                                std::to_string(limits.max_points) + " allowed");
+  }
+  const long long expected = count * static_cast<long long>(kPackedPointBytes);
+  if (static_cast<long long>(bytes.size()) != expected) {
+    return InvalidArgumentError(
+        "packed cloud: " + std::to_string(width) + "x" + std::to_string(height) + " points need " +
+        std::to_string(expected) + " bytes (16 per point), got " + std::to_string(bytes.size()));
+  }
+  // x86-64 and ARM64 are little endian, like the layout: plain copies suffice.
+  std::vector<CloudPoint> points(static_cast<std::size_t>(count));
+  const char* p = bytes.data();
+  for (CloudPoint& point : points) {
+    std::memcpy(&point.x, p, 4);
+    std::memcpy(&point.y, p + 4, 4);
+    std::memcpy(&point.z, p + 8, 4);
+    point.r = static_cast<std::uint8_t>(p[12]);
+    point.g = static_cast<std::uint8_t>(p[13]);
+    point.b = static_cast<std::uint8_t>(p[14]);
+    point.a = static_cast<std::uint8_t>(p[15]);
+    p += kPackedPointBytes;
+  }
+  return MakeCloud(width, height, std::move(points), limits);
+}
+
+}  // namespace relmap::perception

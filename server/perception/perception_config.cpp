@@ -1,0 +1,92 @@
+// Validation and names of the perception configuration.
+#include "perception/perception_config.h"
+
+#include <cmath>
+#include <string>
+
+namespace relmap::perception {
+namespace {
+
+bool Positive(double v) { return std::isfinite(v) && v > 0.0; }
+bool NonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
+
+Status Field(std::string name, std::string requirement) {
+  return InvalidArgumentError("perception config: " + name + " must be " + requirement);
+}
+
+Status ValidateCrop(const CropBox& c) {
+  if (!c.enabled) return OkStatus();
+  const float all[] = {c.min_x, c.max_x, c.min_y, c.max_y, c.min_z, c.max_z};
+  for (float v : all) {
+    if (!std::isfinite(v)) return Field("crop box bounds", "finite");
+  }
+  if (!(c.min_x < c.max_x && c.min_y < c.max_y && c.min_z < c.max_z)) {
+    return Field("crop box", "non-empty (min < max on every axis)");
+  }
+  return OkStatus();
+}
+
+}  // namespace
+
+Status Validate(const PerceptionConfig& config) {
+  const DecodeLimits& l = config.limits;
+  if (l.max_points <= 0) return Field("limits.max_points", "> 0");
+  if (l.max_bytes <= 0) return Field("limits.max_bytes", "> 0");
+  if (!Positive(l.max_abs_coordinate)) return Field("limits.max_abs_coordinate", "> 0");
+
+  const SupervoxelConfig& s = config.supervoxels;
+  if (!Positive(s.voxel_resolution)) return Field("supervoxels.voxel_resolution", "> 0");
+  if (!Positive(s.seed_resolution) || s.seed_resolution < s.voxel_resolution) {
+    return Field("supervoxels.seed_resolution", ">= voxel_resolution");
+  }
+  if (!NonNegative(s.colour_importance)) return Field("supervoxels.colour_importance", ">= 0");
+  if (!NonNegative(s.spatial_importance)) return Field("supervoxels.spatial_importance", ">= 0");
+  if (!NonNegative(s.normal_importance)) return Field("supervoxels.normal_importance", ">= 0");
+  if (s.min_voxels < 1) return Field("supervoxels.min_voxels", ">= 1");
+  if (Status st = ValidateCrop(s.crop); !st.ok()) return st;
+
+  const FeatureConfig& f = config.features;
+  if (!Positive(f.fpfh_radius)) return Field("features.fpfh_radius", "> 0");
+  if (!NonNegative(f.zero_below) || f.zero_below >= 1.0) {
+    return Field("features.zero_below", "in [0, 1)");
+  }
+
+  const ChangeDetectorConfig& c = config.change;
+  if (!Positive(c.octree_resolution)) return Field("change.octree_resolution", "> 0");
+  if (c.min_points_per_cell < 0) return Field("change.min_points_per_cell", ">= 0");
+  if (!NonNegative(c.depth_noise)) return Field("change.depth_noise", ">= 0");
+  if (c.sor_mean_k < 1) return Field("change.sor_mean_k", ">= 1");
+  if (!NonNegative(c.sor_stddev_mul)) return Field("change.sor_stddev_mul", ">= 0");
+  if (!Positive(c.ror_radius)) return Field("change.ror_radius", "> 0");
+  if (c.ror_min_neighbours < 0) return Field("change.ror_min_neighbours", ">= 0");
+  if (c.icp_max_iterations < 1) return Field("change.icp_max_iterations", ">= 1");
+  if (!Positive(c.icp_max_correspondence)) return Field("change.icp_max_correspondence", "> 0");
+  if (!Positive(c.max_fitness)) return Field("change.max_fitness", "> 0");
+
+  if (config.threads < 0 || config.threads > 256) return Field("threads", "in [0, 256]");
+  return OkStatus();
+}
+
+std::string_view ColourConversionName(ColourConversion conversion) {
+  return conversion == ColourConversion::kPaper2018 ? "paper2018" : "corrected";
+}
+
+StatusOr<ColourConversion> ParseColourConversion(std::string_view name) {
+  if (name == "corrected") return ColourConversion::kCorrected;
+  if (name == "paper2018") return ColourConversion::kPaper2018;
+  return InvalidArgumentError("unknown colour conversion '" + std::string(name) +
+                              "' (expected corrected or paper2018)");
+}
+
+std::string_view FpfhSchemeName(FpfhScheme scheme) {
+  return scheme == FpfhScheme::kExactUnion ? "exact" : "shared";
+}
+
+StatusOr<FpfhScheme> ParseFpfhScheme(std::string_view name) {
+  if (name == "exact") return FpfhScheme::kExactUnion;
+  if (name == "shared") return FpfhScheme::kSharedVoxels;
+  return InvalidArgumentError("unknown FPFH scheme '" + std::string(name) +
+                              "' (expected exact or shared)");
+}
+
+}  // namespace relmap::perception
