@@ -18,10 +18,10 @@ seed=${SEED:-1}
 "$tools/relmap-dataset" --problem xor --dimension 48 --samples 1000 --seed "$seed" >"$out/train.csv"
 "$tools/relmap-dataset" --problem xor --dimension 48 --samples 2000 --seed $((seed + 1000)) >"$out/test.csv"
 
-# Prints "samples components accuracy" rows of a report's learning curve.
+# Prints one row per point of a report's learning curve.
 curve() {
   sed 's/.*"curve":\[//; s/\]}$//; s/},{/}\n{/g' "$1" |
-    awk -F'[:,\\]\\[]+' '{printf "    %5s samples  %4s+%-4s components  soft accuracy %s  thresholded %s\n", $3, $5, $6, $8, $10}'
+    sed -E 's/.*"samples":([0-9]+),"components":\[([0-9]+),([0-9]+)\],"soft_accuracy":([^,]+),"thresholded_accuracy":([^,]+),"accuracy_at_0_5":([^}]+)}?/    \1 samples  \2+\3 components  soft accuracy \4  thresholded-soft \5  at 0.5: \6/'
 }
 
 run() {  # run <name> <relmap-cmm flags...>
