@@ -2,7 +2,8 @@
 # The main job, for what exists so far (the classifier and the perception
 # layer; the server and the simulator come with later issues): builds, then
 #  1. streams a seeded 48-d non-convex problem (XOR blobs) through relmap-cmm
-#     for each classifier configuration and prints the learning curves;
+#     for each classifier configuration, prints the learning curves and plots
+#     them to out/demo/learning_curves.png;
 #  2. lets the choice map pick the samples (--active) and compares;
 #  3. segments a real Kinect cloud (or a synthetic one) with relmap-perception
 #     and renders the supervoxels to PNG.
@@ -27,7 +28,8 @@ curve() {
 run() {  # run <name> <relmap-cmm flags...>
   local name=$1
   shift
-  "$tools/relmap-cmm" --train "$out/train.csv" --test "$out/test.csv" --curve 200 --seed "$seed" "$@" >"$out/$name.json"
+  "$tools/relmap-cmm" --train "$out/train.csv" --test "$out/test.csv" --curve 100 --seed "$seed" \
+    --curve-csv "$out/$name-curve.csv" "$@" >"$out/$name.json"
   echo "== $name ($*)"
   curve "$out/$name.json"
 }
@@ -38,6 +40,13 @@ run corrected-lambda-1e-3 --variant corrected --regularization 1e-3
 run paper2018 --variant paper2018
 run one-component-per-class --variant corrected --alpha 1
 run corrected-lambda-1e-3-active --variant corrected --regularization 1e-3 --active --budget 400
+"$tools/relmap-plot" --out "$out/learning_curves.png" --x samples --y accuracy_at_0_5 \
+  --title "48-d XOR blobs: test accuracy (seed $seed)" --x-label "training samples" \
+  --y-label "accuracy at 0.5" --y-min 0.4 --y-max 1 \
+  "corrected=$out/corrected-curve.csv" "corrected lambda 1e-3=$out/corrected-lambda-1e-3-curve.csv" \
+  "paper2018=$out/paper2018-curve.csv" "one per class=$out/one-component-per-class-curve.csv" \
+  "lambda 1e-3 active=$out/corrected-lambda-1e-3-active-curve.csv"
+echo "learning curves: $out/learning_curves.png"
 
 cloud=../shared/data/real/table_scene_mug_stereo_textured.pcd
 [ -f "$cloud" ] || cloud=synthetic:640x480

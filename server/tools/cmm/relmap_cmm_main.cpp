@@ -25,11 +25,12 @@ namespace {
 constexpr std::string_view kUsage =
     "usage: relmap-cmm --train train.csv [--test test.csv] [--variant corrected|paper2018]\n"
     "                  [--alpha 0.25] [--regularization 1e-6] [--seed N] [--active]\n"
-    "                  [--budget N] [--curve N]\n"
+    "                  [--budget N] [--curve N [--curve-csv curve.csv]]\n"
     "  CSV rows: label,f1,...,fp (label 0 or 1; a header line is allowed).\n"
     "  --active   the choice map picks each next sample from the training pool\n"
     "  --budget   with --active: stop after N samples (default: the whole pool)\n"
-    "  --curve    score the test set every N samples (a learning curve)\n";
+    "  --curve    score the test set every N samples (a learning curve)\n"
+    "  --curve-csv  also write that curve as CSV (for relmap-plot)\n";
 
 struct Options {
   std::string train;
@@ -38,6 +39,16 @@ struct Options {
   bool active = false;
   int budget = -1;
   int curve_every = 0;
+  std::string curve_csv;
+};
+
+// One point of the learning curve: test scores after `samples` updates.
+struct CurvePoint {
+  int samples = 0;
+  int components[2] = {0, 0};
+  std::optional<double> soft_accuracy;
+  std::optional<double> thresholded_accuracy;
+  double accuracy_at_half = 0.0;
 };
 
 [[noreturn]] void Fail(const std::string& message) {
@@ -80,6 +91,8 @@ Options ParseArguments(int argc, char** argv) {
       options.budget = static_cast<int>(ParseNumber(flag, value()));
     else if (flag == "--curve")
       options.curve_every = static_cast<int>(ParseNumber(flag, value()));
+    else if (flag == "--curve-csv")
+      options.curve_csv = value();
     else if (flag == "--help" || flag == "-h") {
       std::fputs(kUsage.data(), stdout);
       std::exit(0);
@@ -100,6 +113,9 @@ Options ParseArguments(int argc, char** argv) {
   if (const Status status = cmm::Validate(options.config); !status.ok()) Fail(status.message());
   if (options.curve_every < 0 || (options.active && options.budget == 0)) {
     Fail("--curve and --budget must be positive");
+  }
+  if (!options.curve_csv.empty() && (options.curve_every == 0 || options.test.empty())) {
+    Fail("--curve-csv needs --curve N and --test");
   }
   return options;
 }
@@ -156,17 +172,41 @@ class Run {
         // classifier's re-check stream as it is online.
         sampler_(options_.config.seed ^ 0x5eed5eed5eed5eedULL) {}
 
+  // The learning curve as CSV, one row per point; undefined scores are empty.
+  void WriteCurveCsv() const {
+    std::FILE* file = std::fopen(options_.curve_csv.c_str(), "w");
+    if (file == nullptr) Fail("cannot write " + options_.curve_csv);
+    std::fputs(
+        "samples,components_0,components_1,soft_accuracy,thresholded_accuracy,accuracy_at_0_5\n",
+        file);
+    const auto cell = [](std::optional<double> v) { return v ? fmt::format("{:.6g}", *v) : ""; };
+    for (const CurvePoint& c : curve_) {
+      std::fputs(
+          fmt::format("{},{},{},{},{},{:.6g}\n", c.samples, c.components[0], c.components[1],
+                      cell(c.soft_accuracy), cell(c.thresholded_accuracy), c.accuracy_at_half)
+              .c_str(),
+          file);
+    }
+    std::fclose(file);
+  }
+
   void Execute() {
     if (options_.active) {
       ExploreThePool();
     } else {
       for (Eigen::Index i = 0; i < train_.features.rows(); ++i) Learn(static_cast<int>(i));
     }
+    if (!options_.curve_csv.empty()) WriteCurveCsv();
   }
 
   std::string Report() {
     std::string curve;
-    for (const std::string& point : curve_) curve += (curve.empty() ? "" : ",") + point;
+    for (const CurvePoint& c : curve_) {
+      curve += fmt::format(
+          R"({}{{"samples":{},"components":[{},{}],"soft_accuracy":{},"thresholded_accuracy":{},"accuracy_at_0_5":{:.6g}}})",
+          curve.empty() ? "" : ",", c.samples, c.components[0], c.components[1],
+          Number(c.soft_accuracy), Number(c.thresholded_accuracy), c.accuracy_at_half);
+    }
     std::string test = "null";
     if (test_) {
       const TestScores s = Score(model_, *test_);
@@ -196,10 +236,11 @@ class Run {
     const int n = model_.dataset().size();
     if (test_ && options_.curve_every > 0 && n % options_.curve_every == 0) {
       const TestScores s = Score(model_, *test_);
-      curve_.push_back(fmt::format(
-          R"({{"samples":{},"components":[{},{}],"soft_accuracy":{},"thresholded_accuracy":{},"accuracy_at_0_5":{:.6g}}})",
-          n, model_.component_count(0), model_.component_count(1), Number(s.soft.accuracy),
-          Number(s.thresholded.accuracy), s.accuracy_at_half));
+      curve_.push_back({n,
+                        {model_.component_count(0), model_.component_count(1)},
+                        s.soft.accuracy,
+                        s.thresholded.accuracy,
+                        s.accuracy_at_half});
     }
   }
 
@@ -248,7 +289,7 @@ class Run {
   cmm::CollaborativeMixtureModels model_;
   cmm::Random sampler_;
   LatencyRecorder update_, predict_, choice_;
-  std::vector<std::string> curve_;
+  std::vector<CurvePoint> curve_;
 };
 
 }  // namespace

@@ -40,6 +40,9 @@ expect dimension-mismatch 2 "one-feature.csv has 1 features per row" "$cmm" --tr
 expect online 0 '"mode":"online"' "$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --curve 100
 expect active 0 '"mode":"active","dimension":3,"samples":[' "$cmm" --train "$dir/train.csv" --active --budget 50 --seed 3
 expect paper 0 '"variant":"paper2018"' "$cmm" --train "$dir/train.csv" --variant paper2018
+expect curve-csv-needs-test 2 "--curve-csv needs --curve N and --test" "$cmm" --train "$dir/train.csv" --curve-csv "$dir/c.csv"
+expect curve-csv 0 '"curve":[{"samples":100' "$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --curve 100 --curve-csv "$dir/curve.csv"
+expect curve-csv-rows 0 "300,"  cat "$dir/curve.csv"
 
 # Same seed, same report (latencies aside).
 a=$("$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --active --seed 9 | sed 's/"latency_us".*"curve"/"curve"/')
