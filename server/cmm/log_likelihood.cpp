@@ -15,6 +15,7 @@ namespace {
 // log Γ of a class with its stored weights.
 Eigen::VectorXd ClassLogDensity(std::vector<Component>& mixture, const Dataset& data) {
   std::vector<WeightedColumn> columns;
+  columns.reserve(mixture.size());
   for (Component& c : mixture) columns.push_back({c.LogDensityColumn(data), std::log(c.weight())});
   return MixtureLogDensity(columns, data.size());
 }
@@ -63,6 +64,7 @@ bool CollaborativeMixtureModels::ImprovesLikelihood(int label, const std::vector
   double total = 0.0;
   for (const Component* c : members) total += c->size();
   std::vector<WeightedColumn> columns;
+  columns.reserve(members.size());
   for (Component* c : members) {
     columns.push_back({c->LogDensityColumn(data_), std::log(c->size() / total)});
   }
