@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "cmm/collaborative_mixture_models.h"
 #include "datasets/synthetic_problems.h"
@@ -69,10 +70,23 @@ TEST_P(NonConvexProblem, CorrectedCmmBeatsOneComponentPerClass) {
   EXPECT_GT(many_accuracy, 0.9);
 }
 
-INSTANTIATE_TEST_SUITE_P(TwoAndMoreDimensions, NonConvexProblem,
+std::string CaseName(const ::testing::TestParamInfo<ProblemCase>& info) {
+  switch (info.param.problem) {
+    case Problem::kTwoMoons:
+      return "TwoMoons";
+    case Problem::kXorBlobs:
+      return "XorBlobs";
+    case Problem::kConcentricRings:
+      return "ConcentricRings";
+  }
+  return "Unknown";
+}
+
+INSTANTIATE_TEST_SUITE_P(TwoDimensional, NonConvexProblem,
                          ::testing::Values(ProblemCase{Problem::kTwoMoons, 2},
                                            ProblemCase{Problem::kXorBlobs, 2},
-                                           ProblemCase{Problem::kConcentricRings, 2}));
+                                           ProblemCase{Problem::kConcentricRings, 2}),
+                         CaseName);
 
 }  // namespace
 }  // namespace relmap::cmm

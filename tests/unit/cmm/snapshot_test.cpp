@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "cmm/collaborative_mixture_models.h"
 #include "support/cmm_training.h"
 
@@ -53,7 +55,10 @@ TEST_P(SnapshotRoundTrip, RestoredModelPredictsAndLearnsBitForBit) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothVariants, SnapshotRoundTrip,
-                         ::testing::Values(Variant::kCorrected, Variant::kPaper2018));
+                         ::testing::Values(Variant::kCorrected, Variant::kPaper2018),
+                         [](const ::testing::TestParamInfo<Variant>& info) {
+                           return std::string(VariantName(info.param));
+                         });
 
 class CorruptSnapshot : public ::testing::Test {
  protected:

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 namespace relmap::cmm {
 namespace {
@@ -23,7 +24,10 @@ TEST_P(ToleranceThresholdTable48d, MatchesTheSpecifiedValueAtAlphaOneQuarter) {
 
 INSTANTIATE_TEST_SUITE_P(Alg, ToleranceThresholdTable48d,
                          ::testing::Values(Row{49, 22891.3}, Row{50, 4144.66}, Row{60, 346.292},
-                                           Row{100, 111.691}, Row{1000, 57.1722}));
+                                           Row{100, 111.691}, Row{1000, 57.1722}),
+                         [](const ::testing::TestParamInfo<Row>& info) {
+                           return "n" + std::to_string(info.param.n);
+                         });
 
 TEST(ToleranceThreshold, IsZeroWithoutMoreSamplesThanDimensions) {
   EXPECT_EQ(ToleranceThreshold(48, 48, 0.25), 0.0);
