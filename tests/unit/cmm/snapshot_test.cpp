@@ -56,8 +56,8 @@ TEST_P(SnapshotRoundTrip, RestoredModelPredictsAndLearnsBitForBit) {
 
 INSTANTIATE_TEST_SUITE_P(BothVariants, SnapshotRoundTrip,
                          ::testing::Values(Variant::kCorrected, Variant::kPaper2018),
-                         [](const ::testing::TestParamInfo<Variant>& info) {
-                           return std::string(VariantName(info.param));
+                         [](const ::testing::TestParamInfo<Variant>& test_info) {
+                           return std::string(VariantName(test_info.param));
                          });
 
 class CorruptSnapshot : public ::testing::Test {
