@@ -26,7 +26,7 @@ INSTANTIATE_TEST_SUITE_P(Alg, ToleranceThresholdTable48d,
                          ::testing::Values(Row{49, 22891.3}, Row{50, 4144.66}, Row{60, 346.292},
                                            Row{100, 111.691}, Row{1000, 57.1722}),
                          [](const ::testing::TestParamInfo<Row>& test_info) {
-                           return "n" + std::to_string(test_info.param.n);
+                           return std::string("n").append(std::to_string(test_info.param.n));
                          });
 
 TEST(ToleranceThreshold, IsZeroWithoutMoreSamplesThanDimensions) {
