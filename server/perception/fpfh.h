@@ -5,18 +5,17 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "perception/pair_features.h"
 #include "perception/perception_config.h"
 #include "perception/supervoxels.h"
 
 namespace relmap::perception {
 
-inline constexpr int kFpfhBins = 11;
-inline constexpr int kFpfhDims = 3 * kFpfhBins;
-
 // PCL's FPFH (FPFHEstimation) at every point of a cloud with itself as search surface,
 // divided by 100 so that each 11-bin block sums to 1 (a point with no neighbour in `radius`
-// has an all-zero row). One kd-tree, one radius search and one SPFH per point, parallel
-// over `threads`. Rows follow `positions`; normals must be finite.
+// has an all-zero row). One grid radius search, one pair computation per pair of
+// neighbours and one SPFH per point, parallel over `threads`. Rows follow `positions`;
+// normals must be finite.
 Eigen::MatrixXf PointFpfh(const std::vector<Eigen::Vector3f>& positions,
                           const std::vector<Eigen::Vector3f>& normals, float radius, int threads);
 

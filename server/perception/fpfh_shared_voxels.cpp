@@ -1,98 +1,59 @@
 // FPFH once per voxel over the whole voxel cloud, then the union mean per supervoxel: the
 // fast scheme of §2's cost note. Each voxel's SPFH is computed once instead of ~7 times.
-#include <pcl/features/pfh_tools.h>
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/point_types.h>
-
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
 #include "perception/fpfh.h"
+#include "perception/pair_batch.h"
+#include "perception/radius_neighbours.h"
 
 namespace relmap::perception {
-namespace {
-
-constexpr std::uint16_t kNoPair = 0xffff;
-
-// PCL's SPFH binning of one pair (FPFHEstimation::computePointSPFHSignature), same
-// expressions and types, packed as b1 * 121 + b2 * 11 + b3; kNoPair when PCL skips the pair.
-std::uint16_t PairBins(const Eigen::Vector4f& p1, const Eigen::Vector4f& n1,
-                       const Eigen::Vector4f& p2, const Eigen::Vector4f& n2) {
-  float f1, f2, f3, f4;
-  if (!pcl::computePairFeatures(p1, n1, p2, n2, f1, f2, f3, f4)) return kNoPair;
-  constexpr float kInverseTwoPi = 1.0f / (2.0f * static_cast<float>(M_PI));
-  const auto bin = [](double scaled) {
-    const int b = static_cast<int>(std::floor(kFpfhBins * scaled));
-    return b < 0 ? 0 : (b >= kFpfhBins ? kFpfhBins - 1 : b);
-  };
-  return static_cast<std::uint16_t>(bin((f1 + M_PI) * kInverseTwoPi) * kFpfhBins * kFpfhBins +
-                                    bin((f2 + 1.0) * 0.5) * kFpfhBins + bin((f3 + 1.0) * 0.5));
-}
-
-// computePairFeatures(i, j) and (j, i) give the same features unless PCL's choice of the
-// source point ties (equal acos of the two normal angles); then both orders are computed.
-bool PairIsSymmetric(const Eigen::Vector4f& p1, const Eigen::Vector4f& n1,
-                     const Eigen::Vector4f& p2, const Eigen::Vector4f& n2) {
-  const Eigen::Vector4f d = p2 - p1;
-  const float f4 = d.norm();
-  return std::acos(std::fabs(n1.dot(d) / f4)) != std::acos(std::fabs(n2.dot(d) / f4));
-}
-
-}  // namespace
 
 Eigen::MatrixXf PointFpfh(const std::vector<Eigen::Vector3f>& positions,
                           const std::vector<Eigen::Vector3f>& normals, float radius, int threads) {
   const auto n = static_cast<std::ptrdiff_t>(positions.size());
   Eigen::MatrixXf fpfh = Eigen::MatrixXf::Zero(n, kFpfhDims);
   if (n == 0) return fpfh;
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->resize(positions.size());
+  // Everything below is in the table's row order; rows are ascending in every neighbour list.
+  const RadiusNeighbours table = FindRadiusNeighbours(positions, radius, threads);
+  const std::vector<std::size_t>& begin = table.begin;
+  const std::vector<std::uint32_t>& neighbour = table.neighbour;
   std::vector<Eigen::Vector4f, Eigen::aligned_allocator<Eigen::Vector4f>> p4(positions.size()),
       n4(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    (*cloud)[i].getVector3fMap() = positions[i];
-    p4[i] << positions[i], 0.0f;
-    n4[i] << normals[i], 0.0f;
+  for (std::size_t r = 0; r < positions.size(); ++r) {
+    p4[r] << positions[table.order[r]], 0.0f;
+    n4[r] << normals[table.order[r]], 0.0f;
   }
-  // Unsorted results: sorting by distance costs 1.5-3x (TOOLCHAIN); we sort by index below.
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree(/*sorted=*/false);
-  tree.setInputCloud(cloud);
 
-  // Pass 1: one radius search per point, neighbours sorted by index. The radius relation is
-  // symmetric, so each unordered pair {i, j} is computed once, by the smaller index.
-  std::vector<pcl::Indices> neighbours(positions.size());
-  std::vector<std::vector<float>> sq_distances(positions.size());
-  // bins[i][k]: low 16 bits the pair (i, neighbours[i][k]) as i sees it, high 16 bits as
-  // the neighbour sees it; filled for neighbours[i][k] > i only.
-  std::vector<std::vector<std::uint32_t>> bins(positions.size());
+  // Pass 1: each unordered pair {i, j} is computed once, by i < j (the radius relation is
+  // symmetric): code[e] is the pair as row i sees it, back[e] as j sees it.
+  std::vector<PairCode> code(begin.back()), back(begin.back());
 #pragma omp parallel num_threads(threads)
   {
-    pcl::Indices found;
-    std::vector<float> found_d2;
-    std::vector<std::size_t> order;
-#pragma omp for schedule(dynamic, 256)
+    PairBatch batch;
+    const auto store = [&](std::size_t e, PairCodes codes) {
+      code[e] = codes.forward;
+      back[e] = codes.backward;
+    };
+#pragma omp for schedule(dynamic, 64) nowait
     for (std::ptrdiff_t i = 0; i < n; ++i) {
       const auto ui = static_cast<std::size_t>(i);
-      tree.radiusSearch((*cloud)[ui], radius, found, found_d2);
-      order.resize(found.size());
-      for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-      std::sort(order.begin(), order.end(), [&](auto a, auto b) { return found[a] < found[b]; });
-      neighbours[ui].resize(found.size());
-      sq_distances[ui].resize(found.size());
-      bins[ui].assign(found.size(), 0);
-      for (std::size_t k = 0; k < order.size(); ++k) {
-        neighbours[ui][k] = found[order[k]];
-        sq_distances[ui][k] = found_d2[order[k]];
-        const auto j = static_cast<std::size_t>(neighbours[ui][k]);
+      for (std::size_t e = begin[ui]; e < begin[ui + 1]; ++e) {
+        const std::uint32_t j = neighbour[e];
         if (j <= ui) continue;
-        const std::uint16_t forward = PairBins(p4[ui], n4[ui], p4[j], n4[j]);
-        const std::uint16_t backward = PairIsSymmetric(p4[ui], n4[ui], p4[j], n4[j])
-                                           ? forward
-                                           : PairBins(p4[j], n4[j], p4[ui], n4[ui]);
-        bins[ui][k] = forward | static_cast<std::uint32_t>(backward) << 16;
+        batch.Add(p4[ui], n4[ui], p4[j], n4[j], e);
+        if (batch.full()) batch.Flush(store);
       }
+    }
+    batch.Flush(store);
+  }
+  // Row j lists its smaller neighbours first, ascending; visiting i ascending meets them in
+  // that order, so a cursor per row places each backward code without a search.
+  std::vector<std::size_t> cursor(begin.begin(), begin.end() - 1);
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    for (std::size_t e = begin[i]; e < begin[i + 1]; ++e) {
+      if (neighbour[e] > i) code[cursor[neighbour[e]]++] = back[e];
     }
   }
   // Pass 2: SPFH per point with PCL's normalisation 100 / (k - 1), the query point being
@@ -101,28 +62,16 @@ Eigen::MatrixXf PointFpfh(const std::vector<Eigen::Vector3f>& positions,
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
-    const pcl::Indices& nb = neighbours[ui];
-    if (nb.size() < 2) continue;
-    const float increment = 100.0f / static_cast<float>(nb.size() - 1);
+    const std::size_t k = begin[ui + 1] - begin[ui];
+    if (k < 2) continue;
+    const float increment = 100.0f / static_cast<float>(k - 1);
     float* row = &spfh[ui * kFpfhDims];
-    for (std::size_t k = 0; k < nb.size(); ++k) {
-      const auto j = static_cast<std::size_t>(nb[k]);
-      std::uint16_t code;
-      if (j == ui) continue;
-      if (j > ui) {
-        code = static_cast<std::uint16_t>(bins[ui][k] & 0xffff);
-      } else {
-        const pcl::Indices& back = neighbours[j];
-        const auto it = std::lower_bound(back.begin(), back.end(), static_cast<int>(ui));
-        code = it != back.end() && *it == static_cast<int>(ui)
-                   ? static_cast<std::uint16_t>(
-                         bins[j][static_cast<std::size_t>(it - back.begin())] >> 16)
-                   : PairBins(p4[ui], n4[ui], p4[j], n4[j]);
-      }
-      if (code == kNoPair) continue;
-      row[code / (kFpfhBins * kFpfhBins)] += increment;
-      row[kFpfhBins + (code / kFpfhBins) % kFpfhBins] += increment;
-      row[2 * kFpfhBins + code % kFpfhBins] += increment;
+    for (std::size_t e = begin[ui]; e < begin[ui + 1]; ++e) {
+      if (neighbour[e] == ui) continue;
+      const PairCode c = code[e];
+      row[c / (kFpfhBins * kFpfhBins)] += increment;
+      row[kFpfhBins + (c / kFpfhBins) % kFpfhBins] += increment;
+      row[2 * kFpfhBins + c % kFpfhBins] += increment;
     }
   }
   // FPFH(i) = Σ_{j≠i} SPFH(j) / d²(i, j), each block normalised (FPFHEstimation's
@@ -131,19 +80,22 @@ Eigen::MatrixXf PointFpfh(const std::vector<Eigen::Vector3f>& positions,
   for (std::ptrdiff_t i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
     float sum[kFpfhDims] = {};
-    for (std::size_t k = 0; k < neighbours[ui].size(); ++k) {
-      const float d2 = sq_distances[ui][k];
+    for (std::size_t e = begin[ui]; e < begin[ui + 1]; ++e) {
+      const std::uint32_t j = neighbour[e];
+      const float d2 =
+          FlannSquaredDistance(p4[ui].x(), p4[ui].y(), p4[ui].z(), p4[j].x(), p4[j].y(), p4[j].z());
       if (d2 == 0.0f) continue;
       const float weight = 1.0f / d2;
-      const float* s = &spfh[static_cast<std::size_t>(neighbours[ui][k]) * kFpfhDims];
+      const float* s = &spfh[static_cast<std::size_t>(j) * kFpfhDims];
       for (int b = 0; b < kFpfhDims; ++b) sum[b] += s[b] * weight;
     }
+    const auto out = static_cast<Eigen::Index>(table.order[ui]);
     for (int block = 0; block < 3; ++block) {
       double total = 0.0;
       for (int b = 0; b < kFpfhBins; ++b) total += sum[block * kFpfhBins + b];
       if (total == 0.0) continue;
       for (int b = 0; b < kFpfhBins; ++b) {
-        fpfh(i, block * kFpfhBins + b) = static_cast<float>(sum[block * kFpfhBins + b] / total);
+        fpfh(out, block * kFpfhBins + b) = static_cast<float>(sum[block * kFpfhBins + b] / total);
       }
     }
   }

@@ -54,7 +54,7 @@ enum class FpfhScheme {
   // §2 literally: per supervoxel, PCL FPFH at every voxel of the supervoxel ∪ its
   // neighbours, with that union as search surface. Every voxel is computed ~7 times.
   kExactUnion,
-  // One SPFH and one FPFH per voxel over the whole voxel cloud (one kd-tree), then the
+  // One SPFH and one FPFH per voxel over the whole voxel cloud (one radius search), then the
   // union average. Differs from kExactUnion only near the union's border; the deviation is
   // measured by the tests and benchmarks.
   kSharedVoxels,

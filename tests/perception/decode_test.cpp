@@ -141,8 +141,8 @@ INSTANTIATE_TEST_SUITE_P(AllDataTypes, PcdVariants,
                                            Variant{"binary_compressed", false, 4, 1},
                                            Variant{"binary_compressed", true, 2, 2}),
                          // Readable test names: e.g. binary_compressed_rgba_2x2.
-                         [](const ::testing::TestParamInfo<Variant>& info) {
-                           const Variant& v = info.param;
+                         [](const ::testing::TestParamInfo<Variant>& test_info) {
+                           const Variant& v = test_info.param;
                            return v.data + (v.alpha ? "_rgba_" : "_rgb_") +
                                   std::to_string(v.width) + "x" + std::to_string(v.height);
                          });

@@ -6,8 +6,10 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "perception/decode.h"
+#include "perception/supervoxels.h"
 #include "perception/synthetic_tabletop.h"
 
 namespace relmap::perception::testing {
@@ -33,6 +35,21 @@ inline SyntheticTabletop SmallSyntheticScene() {
   options.width = 320;
   options.height = 240;
   return MakeSyntheticTabletop(options);
+}
+
+// The voxels with a finite normal of the small synthetic scene's segmentation: the point
+// set the FPFH kernels work on.
+inline void SmallSceneVoxels(std::vector<Eigen::Vector3f>& positions,
+                             std::vector<Eigen::Vector3f>& normals) {
+  StatusOr<Segmentation> seg = ExtractSupervoxels(SmallSyntheticScene().cloud, SupervoxelConfig{});
+  ASSERT_TRUE(seg.ok()) << seg.status().message();
+  for (const Supervoxel& sv : seg->supervoxels) {
+    for (const Voxel& v : sv.voxels) {
+      if (!v.normal.allFinite()) continue;
+      positions.push_back(v.position);
+      normals.push_back(v.normal);
+    }
+  }
 }
 
 #define RELMAP_LOAD_REAL_CLOUD(var, name)                                          \
