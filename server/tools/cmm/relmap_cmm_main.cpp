@@ -18,6 +18,7 @@
 #include "exploration/choice.h"
 #include "exploration/metrics.h"
 #include "tools/cmm/latency.h"
+#include "tools/command_line.h"
 
 namespace relmap::tools {
 namespace {
@@ -51,16 +52,10 @@ struct CurvePoint {
   double accuracy_at_half = 0.0;
 };
 
-[[noreturn]] void Fail(const std::string& message) {
-  std::fprintf(stderr, "relmap-cmm: %s\n", message.c_str());
-  std::exit(2);
-}
+[[noreturn]] void Fail(const std::string& message) { ExitWithError("relmap-cmm", message); }
 
 double ParseNumber(std::string_view flag, const char* text) {
-  char* end = nullptr;
-  const double value = std::strtod(text, &end);
-  if (end == text || *end != '\0') Fail(fmt::format("{} expects a number, got '{}'", flag, text));
-  return value;
+  return ParseNumberOrExit("relmap-cmm", flag, text);
 }
 
 Options ParseArguments(int argc, char** argv) {

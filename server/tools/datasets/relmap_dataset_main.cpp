@@ -8,6 +8,7 @@
 
 #include "datasets/csv.h"
 #include "datasets/synthetic_problems.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -17,15 +18,11 @@ constexpr std::string_view kUsage =
     "  Writes label,f1,...,fp rows to standard output.\n";
 
 [[noreturn]] void Fail(const std::string& message) {
-  std::fprintf(stderr, "relmap-dataset: %s\n%s", message.c_str(), kUsage.data());
-  std::exit(2);
+  relmap::tools::ExitWithError("relmap-dataset", message + "\n" + std::string(kUsage));
 }
 
 double Number(std::string_view flag, const char* text) {
-  char* end = nullptr;
-  const double value = std::strtod(text, &end);
-  if (end == text || *end != '\0') Fail(std::string(flag) + " expects a number");
-  return value;
+  return relmap::tools::ParseNumberOrExit("relmap-dataset", flag, text);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "image/line_plot.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -18,8 +19,7 @@ constexpr std::string_view kUsage =
     "  Each FILE has a header line naming its columns, then numeric rows.\n";
 
 [[noreturn]] void Fail(const std::string& message) {
-  std::fprintf(stderr, "relmap-plot: %s\n", message.c_str());
-  std::exit(2);
+  relmap::tools::ExitWithError("relmap-plot", message);
 }
 
 std::vector<std::string> Split(const std::string& line) {
@@ -85,9 +85,9 @@ int main(int argc, char** argv) {
     else if (arg == "--y-label")
       options.y_label = value();
     else if (arg == "--y-min")
-      options.y_min = std::strtod(value().c_str(), nullptr);
+      options.y_min = relmap::tools::ParseNumberOrExit("relmap-plot", arg, value().c_str());
     else if (arg == "--y-max")
-      options.y_max = std::strtod(value().c_str(), nullptr);
+      options.y_max = relmap::tools::ParseNumberOrExit("relmap-plot", arg, value().c_str());
     else if (arg == "--help" || arg == "-h") {
       std::fputs(kUsage.data(), stdout);
       return 0;

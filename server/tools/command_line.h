@@ -1,0 +1,29 @@
+// What the command-line tools share: bad input ends the program with exit code 2
+// and a one-line message, and flag values are parsed strictly.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+namespace relmap::tools {
+
+// Prints "<program>: <message>" to standard error and exits with code 2.
+[[noreturn]] inline void ExitWithError(std::string_view program, const std::string& message) {
+  std::fprintf(stderr, "%.*s: %s\n", static_cast<int>(program.size()), program.data(),
+               message.c_str());
+  std::exit(2);
+}
+
+// `text` as a number, or ExitWithError when any of it is not part of one.
+inline double ParseNumberOrExit(std::string_view program, std::string_view flag, const char* text) {
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != '\0') {
+    ExitWithError(program, std::string(flag) + " expects a number, got '" + text + "'");
+  }
+  return value;
+}
+
+}  // namespace relmap::tools
