@@ -10,7 +10,7 @@ namespace relmap::exploration {
 
 FrameMaps ComputeFrameMaps(const cmm::CollaborativeMixtureModels& model,
                            const Eigen::Ref<const Eigen::MatrixXd>& features,
-                           const ExplorationConfig& config, int interactions, cmm::Random& random) {
+                           const ExplorationConfig& config, int interactions, cmm::Random* random) {
   const Eigen::Index n = features.rows();
   std::vector<Eigen::Index> usable;
   usable.reserve(static_cast<std::size_t>(n));
@@ -34,7 +34,6 @@ FrameMaps ComputeFrameMaps(const cmm::CollaborativeMixtureModels& model,
                                            model.sample_count(0), config.uncertainty_bug);
   const Eigen::VectorXd c = Confidence(evaluation, config.confidence);
   const Eigen::VectorXd choice = ChoiceMap(u, c, config.paper_choice_quirks);
-  const int drawn = DrawTarget(choice, interactions, config.paper_choice_quirks, random);
 
   for (Eigen::Index j = 0; j < m; ++j) {
     maps.relevance[usable[j]] = evaluation.relevance[j];
@@ -42,7 +41,10 @@ FrameMaps ComputeFrameMaps(const cmm::CollaborativeMixtureModels& model,
     maps.confidence[usable[j]] = c[j];
     maps.choice[usable[j]] = choice[j];
   }
-  maps.target = static_cast<int>(usable[static_cast<std::size_t>(drawn)]);
+  if (random != nullptr) {
+    const int drawn = DrawTarget(choice, interactions, config.paper_choice_quirks, *random);
+    maps.target = static_cast<int>(usable[static_cast<std::size_t>(drawn)]);
+  }
   return maps;
 }
 

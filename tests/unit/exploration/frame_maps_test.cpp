@@ -22,7 +22,7 @@ Eigen::MatrixXd Grid(int n) {
 TEST(FrameMaps, BeforeAnySampleRelevanceIsOneHalfAndChoiceUniform) {
   const auto model = Model2d();
   cmm::Random random(1);
-  const FrameMaps maps = ComputeFrameMaps(model, Grid(8), ExplorationConfig{}, 0, random);
+  const FrameMaps maps = ComputeFrameMaps(model, Grid(8), ExplorationConfig{}, 0, &random);
   EXPECT_TRUE(maps.relevance.isApproxToConstant(0.5, 0.0));
   EXPECT_TRUE(maps.choice.isApproxToConstant(1.0 / 8.0));
   EXPECT_GE(maps.target, 0);
@@ -34,7 +34,7 @@ TEST(FrameMaps, ChoiceSumsToOneAndFavoursUncoveredRows) {
   ASSERT_TRUE(model.Add(Eigen::Vector2d(0, 0), 0).ok());
   ASSERT_TRUE(model.Add(Eigen::Vector2d(0.1, 0.05), 1).ok());
   cmm::Random random(2);
-  const FrameMaps maps = ComputeFrameMaps(model, Grid(30), ExplorationConfig{}, 2, random);
+  const FrameMaps maps = ComputeFrameMaps(model, Grid(30), ExplorationConfig{}, 2, &random);
   EXPECT_NEAR(maps.choice.sum(), 1.0, 1e-12);
   // Row 0 sits on a sample (c = 1): it is never worth pushing again.
   EXPECT_DOUBLE_EQ(maps.confidence[0], 1.0);
@@ -50,7 +50,7 @@ TEST(FrameMaps, RowsWithNonFiniteFeaturesGetOneHalfAndNoChoice) {
   features(4, 1) = std::numeric_limits<double>::infinity();
   for (std::uint64_t seed = 0; seed < 50; ++seed) {
     cmm::Random random(seed);
-    const FrameMaps maps = ComputeFrameMaps(model, features, ExplorationConfig{}, 1, random);
+    const FrameMaps maps = ComputeFrameMaps(model, features, ExplorationConfig{}, 1, &random);
     EXPECT_EQ(maps.unusable_rows, 2);
     EXPECT_DOUBLE_EQ(maps.relevance[1], 0.5);
     EXPECT_DOUBLE_EQ(maps.choice[1], 0.0);
@@ -66,10 +66,17 @@ TEST(FrameMaps, NoUsableRowMeansNoTarget) {
   cmm::Random random(3);
   const Eigen::MatrixXd features =
       Eigen::MatrixXd::Constant(3, 2, std::numeric_limits<double>::quiet_NaN());
-  const FrameMaps maps = ComputeFrameMaps(model, features, ExplorationConfig{}, 0, random);
+  const FrameMaps maps = ComputeFrameMaps(model, features, ExplorationConfig{}, 0, &random);
   EXPECT_EQ(maps.target, -1);
   EXPECT_EQ(maps.unusable_rows, 3);
   EXPECT_DOUBLE_EQ(maps.choice.sum(), 0.0);
+}
+
+TEST(FrameMaps, WithoutAnRngNoTargetIsDrawn) {
+  const auto model = Model2d();
+  const FrameMaps maps = ComputeFrameMaps(model, Grid(5), ExplorationConfig{}, 0, nullptr);
+  EXPECT_EQ(maps.target, -1);
+  EXPECT_NEAR(maps.choice.sum(), 1.0, 1e-12);
 }
 
 TEST(FrameMaps, SameSeedSameTargets) {
@@ -78,8 +85,8 @@ TEST(FrameMaps, SameSeedSameTargets) {
   cmm::Random a(7);
   cmm::Random b(7);
   for (int i = 0; i < 20; ++i) {
-    EXPECT_EQ(ComputeFrameMaps(model, Grid(40), ExplorationConfig{}, i, a).target,
-              ComputeFrameMaps(model, Grid(40), ExplorationConfig{}, i, b).target);
+    EXPECT_EQ(ComputeFrameMaps(model, Grid(40), ExplorationConfig{}, i, &a).target,
+              ComputeFrameMaps(model, Grid(40), ExplorationConfig{}, i, &b).target);
   }
 }
 
