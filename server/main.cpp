@@ -1,0 +1,118 @@
+// relmap-server: the relevance server. Configuration by flags; gRPC health and
+// reflection on; SIGTERM or SIGINT stop it gracefully (in-flight calls finish).
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/grpcpp.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <signal.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <thread>
+
+#include "service/relevance_service.h"
+#include "session/session_registry.h"
+#include "tools/command_line.h"
+
+namespace {
+
+constexpr std::string_view kUsage =
+    "usage: relmap-server [--listen 127.0.0.1:50051] [--max-message-mb 64] [--max-sessions 1000]\n"
+    "                     [--max-points 1228800] [--port-file PATH]\n"
+    "  --listen      address to serve on; port 0 picks a free port\n"
+    "  --port-file   write the port actually bound there (for tests and scripts)\n";
+
+struct Options {
+  std::string listen = "127.0.0.1:50051";
+  int max_message_mb = 64;
+  std::size_t max_sessions = 1000;
+  long long max_points = 1280LL * 960LL;
+  std::string port_file;
+};
+
+Options ParseArguments(int argc, char** argv) {
+  using relmap::tools::ExitWithError;
+  using relmap::tools::ParseNumberOrExit;
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view flag = argv[i];
+    if (flag == "--help" || flag == "-h") {
+      std::fputs(kUsage.data(), stdout);
+      std::exit(0);
+    }
+    if (i + 1 >= argc) ExitWithError("relmap-server", std::string(flag) + " needs a value");
+    const char* value = argv[++i];
+    if (flag == "--listen") {
+      options.listen = value;
+    } else if (flag == "--max-message-mb") {
+      options.max_message_mb = static_cast<int>(ParseNumberOrExit("relmap-server", flag, value));
+    } else if (flag == "--max-sessions") {
+      options.max_sessions =
+          static_cast<std::size_t>(ParseNumberOrExit("relmap-server", flag, value));
+    } else if (flag == "--max-points") {
+      options.max_points = static_cast<long long>(ParseNumberOrExit("relmap-server", flag, value));
+    } else if (flag == "--port-file") {
+      options.port_file = value;
+    } else {
+      ExitWithError("relmap-server",
+                    "unknown argument '" + std::string(flag) + "'\n" + std::string(kUsage));
+    }
+  }
+  if (options.max_message_mb < 1 || options.max_sessions < 1 || options.max_points < 1) {
+    ExitWithError("relmap-server", "limits must be positive");
+  }
+  return options;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options options = ParseArguments(argc, argv);
+
+  // Block the stop signals before gRPC starts its threads, so that only the
+  // waiting thread below receives them.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+
+  relmap::session::SessionRegistry registry(options.max_sessions);
+  relmap::perception::DecodeLimits limits;
+  limits.max_points = options.max_points;
+  limits.max_bytes = static_cast<long long>(options.max_message_mb) << 20;
+  relmap::service::RelevanceService service(registry, limits);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  // Without this call Debian's --as-needed link silently drops reflection.
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(options.listen, grpc::InsecureServerCredentials(), &port);
+  builder.SetMaxReceiveMessageSize(options.max_message_mb << 20);
+  builder.SetMaxSendMessageSize(options.max_message_mb << 20);
+  builder.RegisterService(&service);
+  std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  if (!server || port == 0) {
+    spdlog::error("cannot listen on {}", options.listen);
+    return 1;
+  }
+  spdlog::info("relmap-server listening on {} (port {})", options.listen, port);
+  if (!options.port_file.empty()) std::ofstream(options.port_file) << port << '\n';
+
+  std::thread stopper([&] {
+    int signal = 0;
+    sigwait(&stop_signals, &signal);
+    spdlog::info("signal {}: draining calls and stopping", signal);
+    server->GetHealthCheckService()->SetServingStatus(false);
+    server->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  });
+  server->Wait();
+  stopper.join();
+  spdlog::info("relmap-server stopped");
+  return 0;
+}

@@ -1,0 +1,32 @@
+// One spdlog line per RPC: method, session, status and latency.
+#pragma once
+
+#include <grpcpp/support/status.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <string>
+#include <string_view>
+
+namespace relmap::service {
+
+// Runs `body` (returning grpc::Status) and logs how it went. `session_id` is read
+// after the body ran, so CreateSession can log the id it made.
+template <typename Body>
+grpc::Status Logged(std::string_view method, const std::string& session_id, Body&& body) {
+  const auto start = std::chrono::steady_clock::now();
+  const grpc::Status status = body();
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (status.ok()) {
+    spdlog::info("rpc={} session={} status=OK latency_ms={:.2f}", method,
+                 session_id.empty() ? "-" : session_id, ms);
+  } else {
+    spdlog::warn("rpc={} session={} status={} latency_ms={:.2f} message=\"{}\"", method,
+                 session_id.empty() ? "-" : session_id, static_cast<int>(status.error_code()), ms,
+                 status.error_message());
+  }
+  return status;
+}
+
+}  // namespace relmap::service

@@ -1,0 +1,92 @@
+// Field-by-field mapping; unset optional fields keep the paper's defaults.
+#include "service/config_mapping.h"
+
+#include "perception/decode.h"
+
+namespace relmap::service {
+
+StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& config) {
+  session::SessionSettings settings;
+  const cmm::Variant variant = config.classifier().variant() == v1::CLASSIFIER_VARIANT_PAPER2018
+                                   ? cmm::Variant::kPaper2018
+                                   : cmm::Variant::kCorrected;
+  settings.classifier = cmm::CmmConfig::ForVariant(variant);
+  settings.exploration = exploration::ExplorationConfig::ForVariant(variant);
+  if (config.classifier().has_alpha()) settings.classifier.alpha = config.classifier().alpha();
+  if (config.classifier().has_regularization()) {
+    settings.classifier.regularization = config.classifier().regularization();
+  }
+  settings.classifier.seed = config.seed();
+
+  auto& voxels = settings.perception.supervoxels;
+  const v1::SupervoxelConfig& sv = config.supervoxels();
+  if (sv.has_voxel_resolution()) voxels.voxel_resolution = sv.voxel_resolution();
+  if (sv.has_seed_resolution()) voxels.seed_resolution = sv.seed_resolution();
+  if (sv.has_colour_importance()) voxels.colour_importance = sv.colour_importance();
+  if (sv.has_spatial_importance()) voxels.spatial_importance = sv.spatial_importance();
+  if (sv.has_normal_importance()) voxels.normal_importance = sv.normal_importance();
+  if (sv.has_min_voxels()) voxels.min_voxels = sv.min_voxels();
+  if (config.has_workspace()) {
+    const v1::WorkspaceBox& box = config.workspace();
+    voxels.crop = {true,        box.min_x(), box.max_x(), box.min_y(),
+                   box.max_y(), box.min_z(), box.max_z()};
+  }
+  if (config.feature_dimension() != 0) {
+    settings.feature_dimension =
+        static_cast<int>(std::min<std::uint32_t>(config.feature_dimension(), 1u << 20));
+  }
+  return settings;
+}
+
+v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings) {
+  v1::SessionConfig config;
+  auto* classifier = config.mutable_classifier();
+  classifier->set_variant(settings.classifier.variant == cmm::Variant::kPaper2018
+                              ? v1::CLASSIFIER_VARIANT_PAPER2018
+                              : v1::CLASSIFIER_VARIANT_CORRECTED);
+  classifier->set_alpha(settings.classifier.alpha);
+  classifier->set_regularization(settings.classifier.regularization);
+  const auto& voxels = settings.perception.supervoxels;
+  auto* sv = config.mutable_supervoxels();
+  sv->set_voxel_resolution(voxels.voxel_resolution);
+  sv->set_seed_resolution(voxels.seed_resolution);
+  sv->set_colour_importance(voxels.colour_importance);
+  sv->set_spatial_importance(voxels.spatial_importance);
+  sv->set_normal_importance(voxels.normal_importance);
+  sv->set_min_voxels(voxels.min_voxels);
+  if (voxels.crop.enabled) {
+    auto* box = config.mutable_workspace();
+    box->set_min_x(voxels.crop.min_x), box->set_max_x(voxels.crop.max_x);
+    box->set_min_y(voxels.crop.min_y), box->set_max_y(voxels.crop.max_y);
+    box->set_min_z(voxels.crop.min_z), box->set_max_z(voxels.crop.max_z);
+  }
+  config.set_seed(settings.classifier.seed);
+  config.set_feature_dimension(static_cast<std::uint32_t>(settings.feature_dimension));
+  return config;
+}
+
+void FillStats(const session::SessionStats& stats, v1::SessionStats* out) {
+  out->set_non_moveable_samples(stats.samples[0]);
+  out->set_moveable_samples(stats.samples[1]);
+  out->set_non_moveable_components(stats.components[0]);
+  out->set_moveable_components(stats.components[1]);
+  out->set_frames(stats.frames);
+  out->set_created_unix_ms(stats.created_unix_ms);
+  out->set_last_used_unix_ms(stats.last_used_unix_ms);
+}
+
+StatusOr<perception::Cloud> CloudFromProto(const v1::Cloud& cloud,
+                                           const perception::DecodeLimits& limits) {
+  switch (cloud.encoding_case()) {
+    case v1::Cloud::kPcd:
+      return perception::DecodePcd(cloud.pcd(), limits);
+    case v1::Cloud::kPacked:
+      return perception::DecodePacked(cloud.packed().points(), cloud.packed().width(),
+                                      cloud.packed().height(), limits);
+    case v1::Cloud::ENCODING_NOT_SET:
+      break;
+  }
+  return InvalidArgumentError("the request carries no cloud (set cloud.pcd or cloud.packed)");
+}
+
+}  // namespace relmap::service

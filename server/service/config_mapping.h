@@ -1,0 +1,25 @@
+// Translation between the API's messages and the session layer's types.
+#pragma once
+
+#include "common/status.h"
+#include "perception/cloud.h"
+#include "relmap/v1/relevance_service.pb.h"
+#include "session/session.h"
+#include "session/session_settings.h"
+
+namespace relmap::service {
+
+// The settings a SessionConfig asks for, unset fields at their defaults; the
+// ranges are checked by session::Validate when the session is created.
+StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& config);
+
+// The SessionConfig of `settings`, every default filled in.
+v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings);
+
+void FillStats(const session::SessionStats& stats, v1::SessionStats* out);
+
+// The decoded cloud of a request: PCD bytes or the packed layout, validated.
+StatusOr<perception::Cloud> CloudFromProto(const v1::Cloud& cloud,
+                                           const perception::DecodeLimits& limits);
+
+}  // namespace relmap::service

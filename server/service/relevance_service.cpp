@@ -1,0 +1,233 @@
+// The handlers: validation, authorisation, proto <-> session translation.
+#include "service/relevance_service.h"
+
+#include <chrono>
+
+#include "service/call_log.h"
+#include "service/config_mapping.h"
+#include "service/status_mapping.h"
+#include "session/credentials.h"
+
+namespace relmap::service {
+namespace {
+
+std::int64_t NowUnixMs() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// The label of the API as the classifier's 0/1; -1 if unset.
+int ClassOf(v1::Label label) {
+  switch (label) {
+    case v1::LABEL_MOVEABLE:
+      return 1;
+    case v1::LABEL_NOT_MOVEABLE:
+      return 0;
+    default:
+      return -1;
+  }
+}
+
+v1::Vector3 ToProto(const Eigen::Vector3f& v) {
+  v1::Vector3 out;
+  out.set_x(v.x()), out.set_y(v.y()), out.set_z(v.z());
+  return out;
+}
+
+// Feature vectors of a request as the rows of a matrix; ragged → INVALID_ARGUMENT.
+StatusOr<Eigen::MatrixXd> FeatureRows(
+    const google::protobuf::RepeatedPtrField<v1::FeatureVector>& rows) {
+  if (rows.empty()) return InvalidArgumentError("the request has no feature vector");
+  const int p = rows[0].values_size();
+  Eigen::MatrixXd matrix(rows.size(), p);
+  for (int i = 0; i < rows.size(); ++i) {
+    if (rows[i].values_size() != p) {
+      return InvalidArgumentError("feature vector " + std::to_string(i) + " has " +
+                                  std::to_string(rows[i].values_size()) + " values, vector 0 has " +
+                                  std::to_string(p));
+    }
+    for (int k = 0; k < p; ++k) matrix(i, k) = rows[i].values(k);
+  }
+  return matrix;
+}
+
+}  // namespace
+
+StatusOr<std::shared_ptr<session::Session>> RelevanceService::Authorised(
+    const grpc::ServerContext& context, const std::string& id) const {
+  if (id.empty()) return InvalidArgumentError("session_id is required");
+  const auto& metadata = context.client_metadata();
+  const auto header = metadata.find("authorization");
+  constexpr std::string_view kBearer = "Bearer ";
+  if (header == metadata.end() || header->second.size() <= kBearer.size() ||
+      std::string_view(header->second.data(), kBearer.size()) != kBearer) {
+    return Status(StatusCode::kUnauthenticated,
+                  "calls on a session need 'authorization: Bearer <session token>' metadata");
+  }
+  auto session = registry_.Find(id);
+  if (!session.ok()) return session.status();
+  const std::string_view token(header->second.data() + kBearer.size(),
+                               header->second.size() - kBearer.size());
+  if (!session::TokenMatches(token, (*session)->token_hash())) {
+    return Status(StatusCode::kPermissionDenied, "wrong token for session '" + id + "'");
+  }
+  return session;
+}
+
+grpc::Status RelevanceService::CreateSession(grpc::ServerContext*,
+                                             const v1::CreateSessionRequest* request,
+                                             v1::CreateSessionResponse* response) {
+  std::string id;
+  return Logged("CreateSession", id, [&] {
+    auto settings = SettingsFromProto(request->config());
+    if (!settings.ok()) return ToGrpcStatus(settings.status());
+    auto created = registry_.Create(std::move(settings).value(), NowUnixMs());
+    if (!created.ok()) return ToGrpcStatus(created.status());
+    id = created->session->id();
+    response->set_session_id(id);
+    response->set_session_token(created->token);
+    *response->mutable_config() = ProtoFromSettings(created->session->settings());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status RelevanceService::GetSession(grpc::ServerContext* context,
+                                          const v1::GetSessionRequest* request,
+                                          v1::GetSessionResponse* response) {
+  return Logged("GetSession", request->session_id(), [&] {
+    auto session = Authorised(*context, request->session_id());
+    if (!session.ok()) return ToGrpcStatus(session.status());
+    response->set_session_id((*session)->id());
+    *response->mutable_config() = ProtoFromSettings((*session)->settings());
+    FillStats((*session)->Stats(), response->mutable_stats());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status RelevanceService::ListSessions(grpc::ServerContext*, const v1::ListSessionsRequest*,
+                                            v1::ListSessionsResponse* response) {
+  return Logged("ListSessions", "", [&] {
+    for (const auto& session : registry_.List()) {
+      v1::GetSessionResponse* entry = response->add_sessions();
+      entry->set_session_id(session->id());
+      *entry->mutable_config() = ProtoFromSettings(session->settings());
+      FillStats(session->Stats(), entry->mutable_stats());
+    }
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status RelevanceService::DeleteSession(grpc::ServerContext* context,
+                                             const v1::DeleteSessionRequest* request,
+                                             v1::DeleteSessionResponse*) {
+  return Logged("DeleteSession", request->session_id(), [&] {
+    auto session = Authorised(*context, request->session_id());
+    if (!session.ok()) return ToGrpcStatus(session.status());
+    return ToGrpcStatus(registry_.Delete(request->session_id()));
+  });
+}
+
+grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
+                                           const v1::ComputeMapsRequest* request,
+                                           v1::ComputeMapsResponse* response) {
+  return Logged("ComputeMaps", request->session_id(), [&] {
+    const auto start = std::chrono::steady_clock::now();
+    auto session = Authorised(*context, request->session_id());
+    if (!session.ok()) return ToGrpcStatus(session.status());
+    auto cloud = CloudFromProto(request->cloud(), limits_);
+    if (!cloud.ok()) return ToGrpcStatus(cloud.status());
+    const double decode_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    auto mapped = (*session)->ComputeMaps(std::move(cloud).value(), NowUnixMs());
+    if (!mapped.ok()) return ToGrpcStatus(mapped.status());
+
+    const perception::Frame& frame = *mapped->frame;
+    const exploration::FrameMaps& maps = mapped->maps;
+    response->set_frame_id(mapped->frame_id);
+    for (const perception::Supervoxel& sv : frame.segmentation.supervoxels) {
+      v1::Supervoxel* out = response->add_supervoxels();
+      out->set_id(sv.id);
+      *out->mutable_centroid() = ToProto(sv.centroid);
+      *out->mutable_normal() = ToProto(sv.normal);
+      out->set_point_count(static_cast<std::uint32_t>(sv.point_indices.size()));
+      out->set_relevance(maps.relevance[sv.id]);
+      out->set_choice(maps.choice[sv.id]);
+    }
+    if (maps.target >= 0)
+      response->set_target_supervoxel_id(static_cast<std::uint32_t>(maps.target));
+    response->mutable_point_labels()->Add(frame.segmentation.point_labels.begin(),
+                                          frame.segmentation.point_labels.end());
+    response->set_unusable_supervoxels(static_cast<std::uint32_t>(maps.unusable_rows));
+    v1::StageTimings* timings = response->mutable_timings();
+    timings->set_decode_ms(decode_ms);
+    timings->set_filter_ms(frame.timings.filter_ms);
+    timings->set_supervoxels_ms(frame.timings.supervoxels_ms);
+    timings->set_features_ms(frame.timings.features_ms);
+    timings->set_maps_ms(mapped->maps_ms);
+    timings->set_total_ms(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
+                                           const v1::PostOutcomeRequest* request,
+                                           v1::PostOutcomeResponse* response) {
+  return Logged("PostOutcome", request->session_id(), [&] {
+    auto session = Authorised(*context, request->session_id());
+    if (!session.ok()) return ToGrpcStatus(session.status());
+    const int label = ClassOf(request->label());
+    if (label < 0) {
+      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                          "label must be LABEL_MOVEABLE or LABEL_NOT_MOVEABLE");
+    }
+    auto stats = (*session)->PostOutcome(request->frame_id(), request->supervoxel_id(), label,
+                                         request->request_id(), NowUnixMs());
+    if (!stats.ok()) return ToGrpcStatus(stats.status());
+    response->set_label(request->label());
+    FillStats(*stats, response->mutable_stats());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status RelevanceService::ClassifyFeatures(grpc::ServerContext* context,
+                                                const v1::ClassifyFeaturesRequest* request,
+                                                v1::ClassifyFeaturesResponse* response) {
+  return Logged("ClassifyFeatures", request->session_id(), [&] {
+    auto session = Authorised(*context, request->session_id());
+    if (!session.ok()) return ToGrpcStatus(session.status());
+    auto rows = FeatureRows(request->features());
+    if (!rows.ok()) return ToGrpcStatus(rows.status());
+    auto maps = (*session)->ClassifyFeatures(*rows, NowUnixMs());
+    if (!maps.ok()) return ToGrpcStatus(maps.status());
+    response->mutable_relevance()->Add(maps->relevance.data(),
+                                       maps->relevance.data() + maps->relevance.size());
+    response->mutable_choice()->Add(maps->choice.data(), maps->choice.data() + maps->choice.size());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status RelevanceService::AddSamples(grpc::ServerContext* context,
+                                          const v1::AddSamplesRequest* request,
+                                          v1::AddSamplesResponse* response) {
+  return Logged("AddSamples", request->session_id(), [&] {
+    auto session = Authorised(*context, request->session_id());
+    if (!session.ok()) return ToGrpcStatus(session.status());
+    google::protobuf::RepeatedPtrField<v1::FeatureVector> vectors;
+    std::vector<int> labels;
+    for (const v1::LabelledFeature& sample : request->samples()) {
+      *vectors.Add() = sample.feature();
+      labels.push_back(ClassOf(sample.label()));
+    }
+    auto rows = FeatureRows(vectors);
+    if (!rows.ok()) return ToGrpcStatus(rows.status());
+    auto stats = (*session)->AddSamples(*rows, labels, request->request_id(), NowUnixMs());
+    if (!stats.ok()) return ToGrpcStatus(stats.status());
+    FillStats(*stats, response->mutable_stats());
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace relmap::service

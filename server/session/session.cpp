@@ -1,0 +1,183 @@
+// A session's calls: maps of a cloud, outcomes, raw features.
+#include "session/session.h"
+
+#include <chrono>
+#include <string>
+
+namespace relmap::session {
+namespace {
+
+// The target draws take their own stream, derived from the session seed, so
+// that drawing targets never shifts the classifier's re-check stream.
+constexpr std::uint64_t kTargetStream = 0x5eed5eed5eed5eedULL;
+
+double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+}  // namespace
+
+StatusOr<std::unique_ptr<Session>> Session::Create(std::string id, std::string token_hash,
+                                                   SessionSettings settings,
+                                                   std::int64_t now_unix_ms) {
+  if (Status status = Validate(settings); !status.ok()) return status;
+  auto model =
+      cmm::CollaborativeMixtureModels::Create(settings.classifier, settings.feature_dimension);
+  if (!model.ok()) return model.status();
+  return std::unique_ptr<Session>(new Session(std::move(id), std::move(token_hash),
+                                              std::move(settings), std::move(model).value(),
+                                              now_unix_ms));
+}
+
+Session::Session(std::string id, std::string token_hash, SessionSettings settings,
+                 cmm::CollaborativeMixtureModels model, std::int64_t now_unix_ms)
+    : id_(std::move(id)),
+      token_hash_(std::move(token_hash)),
+      settings_(std::move(settings)),
+      model_(std::move(model)),
+      random_(settings_.classifier.seed ^ kTargetStream),
+      created_unix_ms_(now_unix_ms),
+      last_used_unix_ms_(now_unix_ms) {}
+
+StatusOr<MappedFrame> Session::ComputeMaps(perception::Cloud cloud, std::int64_t now_unix_ms) {
+  if (settings_.feature_dimension != kCloudFeatureDimension) {
+    return FailedPreconditionError("session " + id_ + " learns " +
+                                   std::to_string(settings_.feature_dimension) +
+                                   "-d features; clouds give 48-d ones");
+  }
+  // Segmentation and features need no session state: they run before the lock,
+  // so a session's next cloud can be prepared while the previous one is mapped.
+  auto frame = perception::BuildFrame(std::move(cloud), settings_.perception);
+  if (!frame.ok()) return frame.status();
+  auto shared = std::make_shared<const perception::Frame>(std::move(frame).value());
+  if (shared->size() == 0) {
+    return InvalidArgumentError("the cloud gave no supervoxel (too few points in the workspace)");
+  }
+
+  std::lock_guard lock(mutex_);
+  const auto start = std::chrono::steady_clock::now();
+  MappedFrame mapped;
+  mapped.frame_id = next_frame_id_++;
+  mapped.frame = std::move(shared);
+  mapped.maps =
+      exploration::ComputeFrameMaps(model_, mapped.frame->features.values, settings_.exploration,
+                                    static_cast<int>(interactions_), &random_);
+  mapped.maps_ms = MillisecondsSince(start);
+  if (mapped.maps.target >= 0) ++interactions_;
+  ++frames_;
+  last_used_unix_ms_ = now_unix_ms;
+  frames_cache_.push_back(mapped);
+  if (frames_cache_.size() > settings_.frame_cache) frames_cache_.pop_front();
+  return mapped;
+}
+
+StatusOr<SessionStats> Session::PostOutcome(std::uint64_t frame_id, std::uint32_t supervoxel_id,
+                                            int label, const std::string& request_id,
+                                            std::int64_t now_unix_ms) {
+  std::lock_guard lock(mutex_);
+  if (!request_id.empty()) {
+    if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
+  }
+  const MappedFrame* mapped = nullptr;
+  for (const MappedFrame& f : frames_cache_) {
+    if (f.frame_id == frame_id) mapped = &f;
+  }
+  if (mapped == nullptr) {
+    return FailedPreconditionError("frame " + std::to_string(frame_id) + " of session " + id_ +
+                                   " is unknown or no longer cached (the cache keeps the last " +
+                                   std::to_string(settings_.frame_cache) + " frames)");
+  }
+  const auto& features = mapped->frame->features.values;
+  if (supervoxel_id >= features.rows()) {
+    return InvalidArgumentError("frame " + std::to_string(frame_id) + " has " +
+                                std::to_string(features.rows()) + " supervoxels, no id " +
+                                std::to_string(supervoxel_id));
+  }
+  if (label != 0 && label != 1) return InvalidArgumentError("label must be 0 or 1");
+  const auto row = static_cast<Eigen::Index>(supervoxel_id);
+  if (!features.row(row).allFinite()) {
+    return InvalidArgumentError("supervoxel " + std::to_string(supervoxel_id) + " of frame " +
+                                std::to_string(frame_id) +
+                                " has non-finite features and cannot be learned");
+  }
+  if (auto added = model_.Add(features.row(row).transpose(), label); !added.ok()) {
+    return added.status();
+  }
+  last_used_unix_ms_ = now_unix_ms;
+  SessionStats stats = StatsLocked();
+  if (!request_id.empty()) answered_[request_id] = stats;
+  return stats;
+}
+
+Status Session::CheckFeatures(const Eigen::MatrixXd& features) const {
+  if (features.cols() != settings_.feature_dimension) {
+    return InvalidArgumentError("feature vectors have " + std::to_string(features.cols()) +
+                                " values, session " + id_ + " expects " +
+                                std::to_string(settings_.feature_dimension));
+  }
+  for (Eigen::Index i = 0; i < features.rows(); ++i) {
+    if (!features.row(i).allFinite()) {
+      return InvalidArgumentError("feature vector " + std::to_string(i) +
+                                  " has a non-finite value");
+    }
+  }
+  return OkStatus();
+}
+
+StatusOr<exploration::FrameMaps> Session::ClassifyFeatures(const Eigen::MatrixXd& features,
+                                                           std::int64_t now_unix_ms) {
+  if (Status status = CheckFeatures(features); !status.ok()) return status;
+  std::lock_guard lock(mutex_);
+  last_used_unix_ms_ = now_unix_ms;
+  return exploration::ComputeFrameMaps(model_, features, settings_.exploration,
+                                       static_cast<int>(interactions_), nullptr);
+}
+
+StatusOr<SessionStats> Session::AddSamples(const Eigen::MatrixXd& features,
+                                           const std::vector<int>& labels,
+                                           const std::string& request_id,
+                                           std::int64_t now_unix_ms) {
+  if (Status status = CheckFeatures(features); !status.ok()) return status;
+  if (labels.size() != static_cast<std::size_t>(features.rows())) {
+    return InvalidArgumentError("every sample needs a label");
+  }
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (labels[i] != 0 && labels[i] != 1) {
+      return InvalidArgumentError("sample " + std::to_string(i) + " has no valid label");
+    }
+  }
+  std::lock_guard lock(mutex_);
+  if (!request_id.empty()) {
+    if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
+  }
+  for (Eigen::Index i = 0; i < features.rows(); ++i) {
+    if (auto added = model_.Add(features.row(i).transpose(), labels[static_cast<std::size_t>(i)]);
+        !added.ok()) {
+      return added.status();
+    }
+  }
+  last_used_unix_ms_ = now_unix_ms;
+  SessionStats stats = StatsLocked();
+  if (!request_id.empty()) answered_[request_id] = stats;
+  return stats;
+}
+
+SessionStats Session::Stats() const {
+  std::lock_guard lock(mutex_);
+  return StatsLocked();
+}
+
+SessionStats Session::StatsLocked() const {
+  SessionStats stats;
+  for (int label = 0; label < 2; ++label) {
+    stats.samples[label] = static_cast<std::uint64_t>(model_.sample_count(label));
+    stats.components[label] = static_cast<std::uint32_t>(model_.component_count(label));
+  }
+  stats.frames = frames_;
+  stats.created_unix_ms = created_unix_ms_;
+  stats.last_used_unix_ms = last_used_unix_ms_;
+  return stats;
+}
+
+}  // namespace relmap::session

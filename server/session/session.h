@@ -1,0 +1,97 @@
+// One session: its settings, classifier, RNG, frame cache and the answers to
+// requests already served. Every public method is serialised on the session's
+// own mutex; different sessions run in parallel.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "cmm/collaborative_mixture_models.h"
+#include "cmm/random.h"
+#include "common/status.h"
+#include "exploration/frame_maps.h"
+#include "perception/frame.h"
+#include "session/session_settings.h"
+
+namespace relmap::session {
+
+struct SessionStats {
+  std::uint64_t samples[2] = {0, 0};  // per label: 0 non-moveable, 1 moveable
+  std::uint32_t components[2] = {0, 0};
+  std::uint64_t frames = 0;
+  std::int64_t created_unix_ms = 0;
+  std::int64_t last_used_unix_ms = 0;
+};
+
+// A frame with its maps, as ComputeMaps returns it.
+struct MappedFrame {
+  std::uint64_t frame_id = 0;
+  std::shared_ptr<const perception::Frame> frame;
+  exploration::FrameMaps maps;
+  double maps_ms = 0.0;
+};
+
+class Session {
+ public:
+  // A new, empty session. Invalid settings → INVALID_ARGUMENT.
+  static StatusOr<std::unique_ptr<Session>> Create(std::string id, std::string token_hash,
+                                                   SessionSettings settings,
+                                                   std::int64_t now_unix_ms);
+
+  const std::string& id() const { return id_; }
+  const std::string& token_hash() const { return token_hash_; }
+  const SessionSettings& settings() const { return settings_; }
+
+  // Supervoxels, features and maps of a decoded cloud; the frame joins the cache
+  // and the target is drawn with the session's RNG. FAILED_PRECONDITION for a
+  // session fed with features of another dimension.
+  StatusOr<MappedFrame> ComputeMaps(perception::Cloud cloud, std::int64_t now_unix_ms);
+
+  // Learns that pushing `supervoxel_id` of frame `frame_id` gave `label` (0 or 1).
+  // An unknown or evicted frame → FAILED_PRECONDITION; a supervoxel the frame does
+  // not have, or one with non-finite features → INVALID_ARGUMENT. A request id
+  // seen before returns the first answer and learns nothing.
+  StatusOr<SessionStats> PostOutcome(std::uint64_t frame_id, std::uint32_t supervoxel_id, int label,
+                                     const std::string& request_id, std::int64_t now_unix_ms);
+
+  // Relevance and choice maps of raw feature vectors (one per row); no target is
+  // drawn and nothing is learned.
+  StatusOr<exploration::FrameMaps> ClassifyFeatures(const Eigen::MatrixXd& features,
+                                                    std::int64_t now_unix_ms);
+
+  // Learns labelled feature vectors in order, all or none: every row is checked
+  // before the first is learned. Idempotent on `request_id` as PostOutcome.
+  StatusOr<SessionStats> AddSamples(const Eigen::MatrixXd& features, const std::vector<int>& labels,
+                                    const std::string& request_id, std::int64_t now_unix_ms);
+
+  SessionStats Stats() const;
+
+ private:
+  Session(std::string id, std::string token_hash, SessionSettings settings,
+          cmm::CollaborativeMixtureModels model, std::int64_t now_unix_ms);
+  SessionStats StatsLocked() const;
+  Status CheckFeatures(const Eigen::MatrixXd& features) const;
+
+  const std::string id_;
+  const std::string token_hash_;
+  const SessionSettings settings_;
+
+  mutable std::mutex mutex_;
+  cmm::CollaborativeMixtureModels model_;
+  cmm::Random random_;  // target draws; the classifier has its own stream
+  std::uint64_t next_frame_id_ = 1;
+  std::uint64_t frames_ = 0;
+  std::uint64_t interactions_ = 0;
+  std::deque<MappedFrame> frames_cache_;
+  std::map<std::string, SessionStats> answered_;  // request id → the answer given
+  std::int64_t created_unix_ms_;
+  std::int64_t last_used_unix_ms_;
+};
+
+}  // namespace relmap::session

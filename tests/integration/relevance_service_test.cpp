@@ -1,0 +1,270 @@
+// The relevance server end to end: a real server process on a loopback port,
+// talked to through the generated API.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstring>
+#include <numeric>
+
+#include "integration/server_process.h"
+#include "perception/synthetic_tabletop.h"
+#include "relmap/v1/relevance_service.grpc.pb.h"
+
+namespace relmap {
+namespace {
+
+using v1::RelevanceService;
+
+// A synthetic 320×240 tabletop in the packed layout of the API.
+v1::Cloud PackedTabletop() {
+  perception::SyntheticTabletopOptions options;
+  options.width = 320;
+  options.height = 240;
+  const perception::SyntheticTabletop scene = perception::MakeSyntheticTabletop(options);
+  std::string bytes;
+  for (const perception::CloudPoint& p : scene.cloud.points()) {
+    char record[16];
+    std::memcpy(record, &p.x, 4), std::memcpy(record + 4, &p.y, 4),
+        std::memcpy(record + 8, &p.z, 4);
+    record[12] = static_cast<char>(p.r), record[13] = static_cast<char>(p.g);
+    record[14] = static_cast<char>(p.b), record[15] = static_cast<char>(p.a);
+    bytes.append(record, 16);
+  }
+  v1::Cloud cloud;
+  cloud.mutable_packed()->set_width(options.width);
+  cloud.mutable_packed()->set_height(options.height);
+  cloud.mutable_packed()->set_points(bytes);
+  return cloud;
+}
+
+class RelevanceServer : public ::testing::Test {
+ protected:
+  void SetUp() override { stub_ = RelevanceService::NewStub(server_.Channel()); }
+
+  // A session, its id and token.
+  std::pair<std::string, std::string> Create(const v1::SessionConfig& config = {}) {
+    grpc::ClientContext context;
+    v1::CreateSessionRequest request;
+    *request.mutable_config() = config;
+    v1::CreateSessionResponse response;
+    const grpc::Status status = stub_->CreateSession(&context, request, &response);
+    EXPECT_TRUE(status.ok()) << status.error_message();
+    return {response.session_id(), response.session_token()};
+  }
+
+  static void Authorise(grpc::ClientContext& context, const std::string& token) {
+    context.AddMetadata("authorization", "Bearer " + token);
+  }
+
+  grpc::Status ComputeMaps(const std::string& id, const std::string& token, const v1::Cloud& cloud,
+                           v1::ComputeMapsResponse* response) {
+    grpc::ClientContext context;
+    Authorise(context, token);
+    v1::ComputeMapsRequest request;
+    request.set_session_id(id);
+    *request.mutable_cloud() = cloud;
+    return stub_->ComputeMaps(&context, request, response);
+  }
+
+  grpc::Status Post(const std::string& id, const std::string& token, std::uint64_t frame,
+                    std::uint32_t supervoxel, v1::Label label, const std::string& request_id,
+                    v1::PostOutcomeResponse* response) {
+    grpc::ClientContext context;
+    Authorise(context, token);
+    v1::PostOutcomeRequest request;
+    request.set_session_id(id);
+    request.set_frame_id(frame);
+    request.set_supervoxel_id(supervoxel);
+    request.set_label(label);
+    request.set_request_id(request_id);
+    return stub_->PostOutcome(&context, request, response);
+  }
+
+  testing::ServerProcess server_;
+  std::unique_ptr<RelevanceService::Stub> stub_;
+};
+
+TEST_F(RelevanceServer, MapsOfAFirstCloudAreUntrained) {
+  const auto [id, token] = Create();
+  v1::ComputeMapsResponse maps;
+  const grpc::Status status = ComputeMaps(id, token, PackedTabletop(), &maps);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  ASSERT_GT(maps.supervoxels_size(), 10);
+  double choice = 0.0;
+  for (const v1::Supervoxel& sv : maps.supervoxels()) {
+    EXPECT_DOUBLE_EQ(sv.relevance(), 0.5);
+    choice += sv.choice();
+  }
+  EXPECT_NEAR(choice, 1.0, 1e-9);
+  EXPECT_LT(maps.target_supervoxel_id(), static_cast<std::uint32_t>(maps.supervoxels_size()));
+  EXPECT_EQ(maps.point_labels_size(), 320 * 240);
+  EXPECT_GT(maps.timings().total_ms(), 0.0);
+}
+
+TEST_F(RelevanceServer, OutcomesAreLearnedOncePerRequestId) {
+  const auto [id, token] = Create();
+  v1::ComputeMapsResponse maps;
+  ASSERT_TRUE(ComputeMaps(id, token, PackedTabletop(), &maps).ok());
+  v1::PostOutcomeResponse first;
+  ASSERT_TRUE(Post(id, token, maps.frame_id(), maps.target_supervoxel_id(), v1::LABEL_MOVEABLE,
+                   "push-1", &first)
+                  .ok());
+  EXPECT_EQ(first.stats().moveable_samples(), 1u);
+  v1::PostOutcomeResponse again;
+  ASSERT_TRUE(Post(id, token, maps.frame_id(), maps.target_supervoxel_id(), v1::LABEL_MOVEABLE,
+                   "push-1", &again)
+                  .ok());
+  EXPECT_EQ(again.stats().moveable_samples(), 1u);
+  v1::PostOutcomeResponse other;
+  ASSERT_TRUE(Post(id, token, maps.frame_id(), 0, v1::LABEL_NOT_MOVEABLE, "push-2", &other).ok());
+  EXPECT_EQ(other.stats().non_moveable_samples(), 1u);
+
+  // One sample per class is a unit-covariance component: in 48-d its density
+  // (at most (2π)^−24 ≈ 1e−19) leaves every relevance at 0.5. A second moveable
+  // sample gives a covariance estimate; the same scene again (same seed, same
+  // features) is then relevant where it was pushed.
+  v1::PostOutcomeResponse third;
+  const std::uint32_t second_moveable = maps.target_supervoxel_id() == 1 ? 2 : 1;
+  ASSERT_TRUE(
+      Post(id, token, maps.frame_id(), second_moveable, v1::LABEL_MOVEABLE, "push-3", &third).ok());
+  EXPECT_EQ(third.stats().moveable_samples(), 2u);
+  v1::ComputeMapsResponse next;
+  ASSERT_TRUE(ComputeMaps(id, token, PackedTabletop(), &next).ok());
+  EXPECT_GT(next.supervoxels(static_cast<int>(maps.target_supervoxel_id())).relevance(), 0.5);
+  EXPECT_GT(next.supervoxels(static_cast<int>(second_moveable)).relevance(), 0.5);
+}
+
+TEST_F(RelevanceServer, BadOutcomesGetPreciseStatuses) {
+  const auto [id, token] = Create();
+  v1::ComputeMapsResponse maps;
+  ASSERT_TRUE(ComputeMaps(id, token, PackedTabletop(), &maps).ok());
+  v1::PostOutcomeResponse response;
+  EXPECT_EQ(
+      Post(id, token, maps.frame_id() + 7, 0, v1::LABEL_MOVEABLE, "a", &response).error_code(),
+      grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_EQ(
+      Post(id, token, maps.frame_id(), 1000000, v1::LABEL_MOVEABLE, "b", &response).error_code(),
+      grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(Post(id, token, maps.frame_id(), 0, v1::LABEL_UNSPECIFIED, "c", &response).error_code(),
+            grpc::StatusCode::INVALID_ARGUMENT);
+}
+
+TEST_F(RelevanceServer, TokensAreRequiredAndChecked) {
+  const auto [id, token] = Create();
+  grpc::ClientContext no_token;
+  v1::GetSessionRequest request;
+  request.set_session_id(id);
+  v1::GetSessionResponse response;
+  EXPECT_EQ(stub_->GetSession(&no_token, request, &response).error_code(),
+            grpc::StatusCode::UNAUTHENTICATED);
+  grpc::ClientContext wrong;
+  Authorise(wrong, token + "x");
+  EXPECT_EQ(stub_->GetSession(&wrong, request, &response).error_code(),
+            grpc::StatusCode::PERMISSION_DENIED);
+  grpc::ClientContext unknown;
+  Authorise(unknown, token);
+  request.set_session_id("no-such-session");
+  EXPECT_EQ(stub_->GetSession(&unknown, request, &response).error_code(),
+            grpc::StatusCode::NOT_FOUND);
+  grpc::ClientContext right;
+  Authorise(right, token);
+  request.set_session_id(id);
+  ASSERT_TRUE(stub_->GetSession(&right, request, &response).ok());
+  EXPECT_EQ(response.config().classifier().alpha(), 0.25);
+  EXPECT_EQ(response.config().feature_dimension(), 48u);
+}
+
+TEST_F(RelevanceServer, BadCloudsAreInvalidArguments) {
+  const auto [id, token] = Create();
+  v1::ComputeMapsResponse maps;
+  v1::Cloud garbage;
+  garbage.set_pcd(
+      "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+      "WIDTH 1000000000\nHEIGHT 1\nPOINTS 1000000000\nDATA binary\n");
+  EXPECT_EQ(ComputeMaps(id, token, garbage, &maps).error_code(),
+            grpc::StatusCode::INVALID_ARGUMENT);
+  v1::Cloud holes = PackedTabletop();
+  std::string points = holes.packed().points();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t i = 0; i < points.size(); i += 16) std::memcpy(&points[i], &nan, 4);
+  holes.mutable_packed()->set_points(points);
+  EXPECT_EQ(ComputeMaps(id, token, holes, &maps).error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(ComputeMaps(id, token, v1::Cloud{}, &maps).error_code(),
+            grpc::StatusCode::INVALID_ARGUMENT);
+}
+
+TEST_F(RelevanceServer, FeatureSessionsLearnRawVectors) {
+  v1::SessionConfig config;
+  config.set_feature_dimension(2);
+  const auto [id, token] = Create(config);
+  grpc::ClientContext add_context;
+  Authorise(add_context, token);
+  v1::AddSamplesRequest add;
+  add.set_session_id(id);
+  add.set_request_id("batch-1");
+  for (int i = 0; i < 20; ++i) {
+    v1::LabelledFeature* sample = add.add_samples();
+    sample->mutable_feature()->add_values(i % 2 == 0 ? 0.01 * i : 5 + 0.01 * i);
+    sample->mutable_feature()->add_values(0.0);
+    sample->set_label(i % 2 == 0 ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE);
+  }
+  v1::AddSamplesResponse added;
+  ASSERT_TRUE(stub_->AddSamples(&add_context, add, &added).ok());
+  EXPECT_EQ(added.stats().moveable_samples(), 10u);
+
+  grpc::ClientContext classify_context;
+  Authorise(classify_context, token);
+  v1::ClassifyFeaturesRequest classify;
+  classify.set_session_id(id);
+  for (double x : {0.05, 5.05}) {
+    v1::FeatureVector* vector = classify.add_features();
+    vector->add_values(x);
+    vector->add_values(0.0);
+  }
+  v1::ClassifyFeaturesResponse relevance;
+  ASSERT_TRUE(stub_->ClassifyFeatures(&classify_context, classify, &relevance).ok());
+  EXPECT_GT(relevance.relevance(0), 0.5);
+  EXPECT_LT(relevance.relevance(1), 0.5);
+
+  grpc::ClientContext ragged_context;
+  Authorise(ragged_context, token);
+  classify.add_features()->add_values(1.0);
+  EXPECT_EQ(stub_->ClassifyFeatures(&ragged_context, classify, &relevance).error_code(),
+            grpc::StatusCode::INVALID_ARGUMENT);
+
+  grpc::ClientContext maps_context;
+  Authorise(maps_context, token);
+  v1::ComputeMapsRequest maps_request;
+  maps_request.set_session_id(id);
+  *maps_request.mutable_cloud() = PackedTabletop();
+  v1::ComputeMapsResponse maps;
+  EXPECT_EQ(stub_->ComputeMaps(&maps_context, maps_request, &maps).error_code(),
+            grpc::StatusCode::FAILED_PRECONDITION);
+}
+
+TEST(RelevanceServerLimits, OversizedMessagesAreResourceExhausted) {
+  testing::ServerProcess server({"--max-message-mb", "1"});
+  auto stub = RelevanceService::NewStub(server.Channel());
+  grpc::ClientContext context;
+  v1::CreateSessionRequest create;
+  v1::CreateSessionResponse created;
+  ASSERT_TRUE(stub->CreateSession(&context, create, &created).ok());
+  grpc::ClientContext maps_context;
+  maps_context.AddMetadata("authorization", "Bearer " + created.session_token());
+  v1::ComputeMapsRequest request;
+  request.set_session_id(created.session_id());
+  *request.mutable_cloud() = PackedTabletop();  // 320×240×16 B = 1.2 MB
+  v1::ComputeMapsResponse response;
+  EXPECT_EQ(stub->ComputeMaps(&maps_context, request, &response).error_code(),
+            grpc::StatusCode::RESOURCE_EXHAUSTED);
+}
+
+TEST(RelevanceServerLifecycle, SigtermStopsTheServerCleanly) {
+  testing::ServerProcess server;
+  const int status = server.Stop();
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
+}  // namespace
+}  // namespace relmap

@@ -1,0 +1,60 @@
+// fork/exec of the server binary named by RELMAP_SERVER_BINARY (set by CMake).
+#include "integration/server_process.h"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+namespace relmap::testing {
+
+ServerProcess::ServerProcess(std::vector<std::string> extra_arguments) {
+  port_file_ = ::testing::TempDir() + "/relmap_server_port_" + std::to_string(::getpid()) + "_" +
+               std::to_string(reinterpret_cast<std::uintptr_t>(this));
+  std::remove(port_file_.c_str());
+  std::vector<std::string> arguments = {RELMAP_SERVER_BINARY, "--listen", "127.0.0.1:0",
+                                        "--port-file", port_file_};
+  arguments.insert(arguments.end(), extra_arguments.begin(), extra_arguments.end());
+  pid_ = ::fork();
+  if (pid_ == 0) {
+    std::vector<char*> argv;
+    for (auto& a : arguments) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::ifstream in(port_file_);
+    if (in >> port_) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_GT(port_, 0) << "relmap-server did not start";
+}
+
+ServerProcess::~ServerProcess() {
+  if (pid_ > 0) Stop();
+  std::remove(port_file_.c_str());
+}
+
+std::shared_ptr<grpc::Channel> ServerProcess::Channel(int max_message_bytes) const {
+  grpc::ChannelArguments arguments;
+  arguments.SetMaxSendMessageSize(max_message_bytes);
+  arguments.SetMaxReceiveMessageSize(max_message_bytes);
+  return grpc::CreateCustomChannel(address(), grpc::InsecureChannelCredentials(), arguments);
+}
+
+int ServerProcess::Stop() {
+  if (pid_ <= 0) return -1;
+  ::kill(pid_, SIGTERM);
+  int status = 0;
+  ::waitpid(pid_, &status, 0);
+  pid_ = -1;
+  return status;
+}
+
+}  // namespace relmap::testing

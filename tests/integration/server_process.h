@@ -1,0 +1,32 @@
+// A real relmap-server process on a loopback port, for integration tests: started
+// with --listen 127.0.0.1:0, its port read from --port-file, stopped with SIGTERM.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+#include <sys/types.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace relmap::testing {
+
+class ServerProcess {
+ public:
+  // Starts the server binary with `extra_arguments`; fails the test if it does
+  // not bind a port within 10 s.
+  explicit ServerProcess(std::vector<std::string> extra_arguments = {});
+  ~ServerProcess();
+
+  std::string address() const { return "127.0.0.1:" + std::to_string(port_); }
+  std::shared_ptr<grpc::Channel> Channel(int max_message_bytes = 64 << 20) const;
+  // Sends SIGTERM and returns the exit status (as waitpid reports it).
+  int Stop();
+
+ private:
+  pid_t pid_ = -1;
+  int port_ = 0;
+  std::string port_file_;
+};
+
+}  // namespace relmap::testing
