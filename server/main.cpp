@@ -4,6 +4,7 @@
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
 #include <signal.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -72,6 +73,8 @@ Options ParseArguments(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   const Options options = ParseArguments(argc, argv);
+  // Logs are diagnostics: standard error, one line per event.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("relmap-server"));
 
   // Block the stop signals before gRPC starts its threads, so that only the
   // waiting thread below receives them.
