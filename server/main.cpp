@@ -10,22 +10,27 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
 #include <thread>
 
 #include "service/relevance_service.h"
+#include "service/session_restore.h"
 #include "session/session_registry.h"
+#include "session/sqlite_session_store.h"
 #include "tools/command_line.h"
 
 namespace {
 
 constexpr std::string_view kUsage =
     "usage: relmap-server [--listen 127.0.0.1:50051] [--max-message-mb 64] [--max-sessions 1000]\n"
-    "                     [--max-points 1228800] [--port-file PATH]\n"
+    "                     [--max-points 1228800] [--port-file PATH] [--data-dir DIR]\n"
     "  --listen      address to serve on; port 0 picks a free port\n"
-    "  --port-file   write the port actually bound there (for tests and scripts)\n";
+    "  --port-file   write the port actually bound there (for tests and scripts)\n"
+    "  --data-dir    keep sessions and samples in DIR/relmap.sqlite (WAL) and restore them\n"
+    "                at start-up; without it sessions live in memory only\n";
 
 struct Options {
   std::string listen = "127.0.0.1:50051";
@@ -33,6 +38,7 @@ struct Options {
   std::size_t max_sessions = 1000;
   long long max_points = 1280LL * 960LL;
   std::string port_file;
+  std::string data_dir;
 };
 
 Options ParseArguments(int argc, char** argv) {
@@ -58,6 +64,8 @@ Options ParseArguments(int argc, char** argv) {
       options.max_points = static_cast<long long>(ParseNumberOrExit("relmap-server", flag, value));
     } else if (flag == "--port-file") {
       options.port_file = value;
+    } else if (flag == "--data-dir") {
+      options.data_dir = value;
     } else {
       ExitWithError("relmap-server",
                     "unknown argument '" + std::string(flag) + "'\n" + std::string(kUsage));
@@ -84,7 +92,28 @@ int main(int argc, char** argv) {
   sigaddset(&stop_signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
 
-  relmap::session::SessionRegistry registry(options.max_sessions);
+  std::unique_ptr<relmap::session::SqliteSessionStore> store;
+  if (!options.data_dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(options.data_dir, error);
+    auto opened = relmap::session::SqliteSessionStore::Open(options.data_dir + "/relmap.sqlite");
+    if (!opened.ok()) {
+      spdlog::error("cannot open the session store in {}: {}", options.data_dir,
+                    opened.status().message());
+      return 1;
+    }
+    store = std::move(opened).value();
+  } else {
+    spdlog::warn("no --data-dir: sessions live in memory only and are lost at exit");
+  }
+  relmap::session::SessionRegistry registry(options.max_sessions, store.get());
+  if (store) {
+    if (const relmap::Status restored = relmap::service::RestoreSessions(*store, registry);
+        !restored.ok()) {
+      spdlog::error("cannot restore the stored sessions: {}", restored.message());
+      return 1;
+    }
+  }
   relmap::perception::DecodeLimits limits;
   limits.max_points = options.max_points;
   limits.max_bytes = static_cast<long long>(options.max_message_mb) << 20;

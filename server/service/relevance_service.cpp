@@ -82,7 +82,9 @@ grpc::Status RelevanceService::CreateSession(grpc::ServerContext*,
   return Logged("CreateSession", id, [&] {
     auto settings = SettingsFromProto(request->config());
     if (!settings.ok()) return ToGrpcStatus(settings.status());
-    auto created = registry_.Create(std::move(settings).value(), NowUnixMs());
+    // The store keeps the filled-in config, from which a restart rebuilds the settings.
+    const std::string config_blob = ProtoFromSettings(*settings).SerializeAsString();
+    auto created = registry_.Create(std::move(settings).value(), config_blob, NowUnixMs());
     if (!created.ok()) return ToGrpcStatus(created.status());
     id = created->session->id();
     response->set_session_id(id);

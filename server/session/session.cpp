@@ -2,7 +2,10 @@
 #include "session/session.h"
 
 #include <chrono>
+#include <span>
 #include <string>
+
+#include "session/credentials.h"
 
 namespace relmap::session {
 namespace {
@@ -20,21 +23,23 @@ double MillisecondsSince(std::chrono::steady_clock::time_point start) {
 
 StatusOr<std::unique_ptr<Session>> Session::Create(std::string id, std::string token_hash,
                                                    SessionSettings settings,
-                                                   std::int64_t now_unix_ms) {
+                                                   std::int64_t now_unix_ms, SessionStore* store) {
   if (Status status = Validate(settings); !status.ok()) return status;
   auto model =
       cmm::CollaborativeMixtureModels::Create(settings.classifier, settings.feature_dimension);
   if (!model.ok()) return model.status();
   return std::unique_ptr<Session>(new Session(std::move(id), std::move(token_hash),
                                               std::move(settings), std::move(model).value(),
-                                              now_unix_ms));
+                                              now_unix_ms, store));
 }
 
 Session::Session(std::string id, std::string token_hash, SessionSettings settings,
-                 cmm::CollaborativeMixtureModels model, std::int64_t now_unix_ms)
+                 cmm::CollaborativeMixtureModels model, std::int64_t now_unix_ms,
+                 SessionStore* store)
     : id_(std::move(id)),
       token_hash_(std::move(token_hash)),
       settings_(std::move(settings)),
+      store_(store),
       model_(std::move(model)),
       random_(settings_.classifier.seed ^ kTargetStream),
       created_unix_ms_(now_unix_ms),
@@ -101,8 +106,9 @@ StatusOr<SessionStats> Session::PostOutcome(std::uint64_t frame_id, std::uint32_
                                 std::to_string(frame_id) +
                                 " has non-finite features and cannot be learned");
   }
-  if (auto added = model_.Add(features.row(row).transpose(), label); !added.ok()) {
-    return added.status();
+  const std::string key = request_id.empty() ? "auto-" + RandomHex(12) : request_id;
+  if (Status status = PersistAndLearn(key, features.row(row).transpose(), label); !status.ok()) {
+    return status;
   }
   last_used_unix_ms_ = now_unix_ms;
   SessionStats stats = StatsLocked();
@@ -151,16 +157,51 @@ StatusOr<SessionStats> Session::AddSamples(const Eigen::MatrixXd& features,
   if (!request_id.empty()) {
     if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
   }
+  // One store key per sample: a retried batch skips what was committed already.
+  const std::string prefix = request_id.empty() ? "auto-" + RandomHex(12) : request_id;
   for (Eigen::Index i = 0; i < features.rows(); ++i) {
-    if (auto added = model_.Add(features.row(i).transpose(), labels[static_cast<std::size_t>(i)]);
-        !added.ok()) {
-      return added.status();
+    if (Status status =
+            PersistAndLearn(prefix + "/" + std::to_string(i), features.row(i).transpose(),
+                            labels[static_cast<std::size_t>(i)]);
+        !status.ok()) {
+      return status;
     }
   }
   last_used_unix_ms_ = now_unix_ms;
   SessionStats stats = StatsLocked();
   if (!request_id.empty()) answered_[request_id] = stats;
   return stats;
+}
+
+Status Session::PersistAndLearn(const std::string& request_id, const Eigen::VectorXd& x,
+                                int label) {
+  if (store_ != nullptr) {
+    // Acknowledged only once committed: the store comes first, then the model.
+    const auto sequence =
+        store_->AppendSample(id_, request_id, std::span<const double>(x.data(), x.size()), label);
+    if (!sequence.ok()) return sequence.status();
+    const std::int64_t learned = model_.dataset().size();
+    if (*sequence < learned) return OkStatus();  // stored and learned before a restart
+    if (*sequence > learned) {
+      return DataLossError("session " + id_ + ": the store holds " + std::to_string(*sequence) +
+                           " samples, the model " + std::to_string(learned));
+    }
+  }
+  auto added = model_.Add(x, label);
+  return added.ok() ? OkStatus() : added.status();
+}
+
+Status Session::Replay(const std::vector<StoredSample>& samples) {
+  std::lock_guard lock(mutex_);
+  for (const StoredSample& sample : samples) {
+    const Eigen::Map<const Eigen::VectorXd> x(sample.features.data(),
+                                              static_cast<Eigen::Index>(sample.features.size()));
+    if (auto added = model_.Add(x, sample.label); !added.ok()) {
+      return DataLossError("session " + id_ + ": stored sample " + std::to_string(sample.sequence) +
+                           " cannot be relearned: " + added.status().message());
+    }
+  }
+  return OkStatus();
 }
 
 SessionStats Session::Stats() const {

@@ -18,6 +18,7 @@
 #include "exploration/frame_maps.h"
 #include "perception/frame.h"
 #include "session/session_settings.h"
+#include "session/session_store.h"
 
 namespace relmap::session {
 
@@ -39,10 +40,16 @@ struct MappedFrame {
 
 class Session {
  public:
-  // A new, empty session. Invalid settings → INVALID_ARGUMENT.
+  // A new, empty session. Invalid settings → INVALID_ARGUMENT. With a `store`,
+  // every sample is committed there before the session learns it.
   static StatusOr<std::unique_ptr<Session>> Create(std::string id, std::string token_hash,
                                                    SessionSettings settings,
-                                                   std::int64_t now_unix_ms);
+                                                   std::int64_t now_unix_ms,
+                                                   SessionStore* store = nullptr);
+
+  // Relearns stored samples in sequence order (after a restart): the same
+  // samples in the same order rebuild the same model, bit for bit.
+  Status Replay(const std::vector<StoredSample>& samples);
 
   const std::string& id() const { return id_; }
   const std::string& token_hash() const { return token_hash_; }
@@ -74,13 +81,17 @@ class Session {
 
  private:
   Session(std::string id, std::string token_hash, SessionSettings settings,
-          cmm::CollaborativeMixtureModels model, std::int64_t now_unix_ms);
+          cmm::CollaborativeMixtureModels model, std::int64_t now_unix_ms, SessionStore* store);
   SessionStats StatsLocked() const;
   Status CheckFeatures(const Eigen::MatrixXd& features) const;
+  // Commits a sample to the store (if any) and learns it, unless the store had
+  // it already under this request id (a retry after a restart).
+  Status PersistAndLearn(const std::string& request_id, const Eigen::VectorXd& x, int label);
 
   const std::string id_;
   const std::string token_hash_;
   const SessionSettings settings_;
+  SessionStore* const store_;  // null: in memory only
 
   mutable std::mutex mutex_;
   cmm::CollaborativeMixtureModels model_;

@@ -2,6 +2,7 @@
 #include "session/session_registry.h"
 
 #include <algorithm>
+#include <chrono>
 #include <mutex>
 
 #include "session/credentials.h"
@@ -9,15 +10,27 @@
 namespace relmap::session {
 
 StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings settings,
+                                                           std::string config_blob,
                                                            std::int64_t now_unix_ms) {
   std::string token = RandomHex(32);
-  auto session = Session::Create(RandomHex(16), Sha256Hex(token), std::move(settings), now_unix_ms);
+  auto session =
+      Session::Create(RandomHex(16), Sha256Hex(token), std::move(settings), now_unix_ms, store_);
   if (!session.ok()) return session.status();
   std::shared_ptr<Session> shared = std::move(session).value();
   std::unique_lock lock(mutex_);
   if (sessions_.size() >= max_sessions_) {
     return ResourceExhaustedError("the server holds its maximum of " +
                                   std::to_string(max_sessions_) + " sessions");
+  }
+  if (store_ != nullptr) {
+    SessionRecord record;
+    record.id = shared->id();
+    record.token_hash = shared->token_hash();
+    record.created_at = Timestamp(std::chrono::milliseconds(now_unix_ms));
+    record.config = std::move(config_blob);
+    record.cmm_config = shared->settings().classifier;
+    record.feature_dimension = shared->settings().feature_dimension;
+    if (Status status = store_->CreateSession(record); !status.ok()) return status;
   }
   sessions_.emplace(shared->id(), shared);
   return Created{std::move(shared), std::move(token)};
@@ -40,9 +53,21 @@ std::vector<std::shared_ptr<Session>> SessionRegistry::List() const {
   return out;
 }
 
+Status SessionRegistry::Adopt(std::shared_ptr<Session> session) {
+  std::unique_lock lock(mutex_);
+  if (!sessions_.emplace(session->id(), session).second) {
+    return Status(StatusCode::kAlreadyExists, "session '" + session->id() + "' exists twice");
+  }
+  return OkStatus();
+}
+
 Status SessionRegistry::Delete(const std::string& id) {
   std::unique_lock lock(mutex_);
-  if (sessions_.erase(id) == 0) return NotFoundError("no session '" + id + "'");
+  if (sessions_.find(id) == sessions_.end()) return NotFoundError("no session '" + id + "'");
+  if (store_ != nullptr) {
+    if (Status status = store_->DeleteSession(id); !status.ok()) return status;
+  }
+  sessions_.erase(id);
   return OkStatus();
 }
 

@@ -15,14 +15,22 @@ namespace relmap::session {
 
 class SessionRegistry {
  public:
-  explicit SessionRegistry(std::size_t max_sessions) : max_sessions_(max_sessions) {}
+  // With a `store`, sessions are created and deleted there too, and their
+  // samples committed there before they are learned.
+  explicit SessionRegistry(std::size_t max_sessions, SessionStore* store = nullptr)
+      : max_sessions_(max_sessions), store_(store) {}
 
   struct Created {
     std::shared_ptr<Session> session;
     std::string token;  // given to the client once; the registry keeps its hash
   };
   // A new session with a random id and token. RESOURCE_EXHAUSTED at the limit.
-  StatusOr<Created> Create(SessionSettings settings, std::int64_t now_unix_ms);
+  // `config_blob` is what the store keeps to rebuild the settings after a restart.
+  StatusOr<Created> Create(SessionSettings settings, std::string config_blob,
+                           std::int64_t now_unix_ms);
+  // Adds a session rebuilt from the store at start-up.
+  Status Adopt(std::shared_ptr<Session> session);
+  SessionStore* store() const { return store_; }
   // NOT_FOUND for an unknown id.
   StatusOr<std::shared_ptr<Session>> Find(const std::string& id) const;
   // Every session, ordered by id.
@@ -32,6 +40,7 @@ class SessionRegistry {
 
  private:
   const std::size_t max_sessions_;
+  SessionStore* const store_;
   mutable std::shared_mutex mutex_;
   std::unordered_map<std::string, std::shared_ptr<Session>> sessions_;
 };

@@ -22,6 +22,8 @@ class ServerProcess {
   std::shared_ptr<grpc::Channel> Channel(int max_message_bytes = 64 << 20) const;
   // Sends SIGTERM and returns the exit status (as waitpid reports it).
   int Stop();
+  // SIGKILL: the process dies at once, as in a crash or `kill -9`.
+  void Kill();
 
  private:
   pid_t pid_ = -1;

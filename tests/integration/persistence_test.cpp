@@ -1,0 +1,104 @@
+// Durability end to end: after `kill -9` and a restart on the same data
+// directory, every session and acknowledged sample is back and the model
+// predicts exactly as before.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "integration/server_process.h"
+#include "relmap/v1/relevance_service.grpc.pb.h"
+
+namespace relmap {
+namespace {
+
+using v1::RelevanceService;
+
+void Authorise(grpc::ClientContext& context, const std::string& token) {
+  context.AddMetadata("authorization", "Bearer " + token);
+}
+
+v1::AddSamplesRequest Samples(const std::string& id, const std::string& request_id) {
+  v1::AddSamplesRequest request;
+  request.set_session_id(id);
+  request.set_request_id(request_id);
+  for (int i = 0; i < 60; ++i) {
+    v1::LabelledFeature* sample = request.add_samples();
+    const bool moveable = i % 3 == 0;
+    sample->mutable_feature()->add_values((moveable ? 0.0 : 1.0) + 0.01 * (i % 7));
+    sample->mutable_feature()->add_values(0.02 * (i % 5));
+    sample->set_label(moveable ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE);
+  }
+  return request;
+}
+
+v1::ClassifyFeaturesResponse Classify(RelevanceService::Stub& stub, const std::string& id,
+                                      const std::string& token) {
+  grpc::ClientContext context;
+  Authorise(context, token);
+  v1::ClassifyFeaturesRequest request;
+  request.set_session_id(id);
+  for (int i = 0; i < 21; ++i) {
+    v1::FeatureVector* vector = request.add_features();
+    vector->add_values(-0.2 + 0.07 * i);
+    vector->add_values(0.04);
+  }
+  v1::ClassifyFeaturesResponse response;
+  EXPECT_TRUE(stub.ClassifyFeatures(&context, request, &response).ok());
+  return response;
+}
+
+TEST(Persistence, AcknowledgedSamplesSurviveKillMinusNine) {
+  const std::string dir =
+      ::testing::TempDir() + "/relmap_persistence_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  std::string id, token;
+  v1::ClassifyFeaturesResponse before;
+  {
+    testing::ServerProcess server({"--data-dir", dir});
+    auto stub = RelevanceService::NewStub(server.Channel());
+    grpc::ClientContext create_context;
+    v1::CreateSessionRequest create;
+    create.mutable_config()->set_feature_dimension(2);
+    create.mutable_config()->set_seed(17);
+    v1::CreateSessionResponse created;
+    ASSERT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
+    id = created.session_id();
+    token = created.session_token();
+    grpc::ClientContext add_context;
+    Authorise(add_context, token);
+    v1::AddSamplesResponse added;
+    ASSERT_TRUE(stub->AddSamples(&add_context, Samples(id, "batch-1"), &added).ok());
+    ASSERT_EQ(added.stats().moveable_samples() + added.stats().non_moveable_samples(), 60u);
+    before = Classify(*stub, id, token);
+    server.Kill();
+  }
+
+  testing::ServerProcess restarted({"--data-dir", dir});
+  auto stub = RelevanceService::NewStub(restarted.Channel());
+  grpc::ClientContext get_context;
+  Authorise(get_context, token);
+  v1::GetSessionRequest get;
+  get.set_session_id(id);
+  v1::GetSessionResponse session;
+  ASSERT_TRUE(stub->GetSession(&get_context, get, &session).ok());
+  EXPECT_EQ(session.stats().moveable_samples(), 20u);
+  EXPECT_EQ(session.stats().non_moveable_samples(), 40u);
+  EXPECT_EQ(session.config().seed(), 17u);
+
+  const v1::ClassifyFeaturesResponse after = Classify(*stub, id, token);
+  ASSERT_EQ(after.relevance_size(), before.relevance_size());
+  for (int i = 0; i < after.relevance_size(); ++i) {
+    EXPECT_EQ(after.relevance(i), before.relevance(i)) << "vector " << i;  // bit for bit
+  }
+
+  // The same batch posted again after the restart is not learned twice.
+  grpc::ClientContext retry_context;
+  Authorise(retry_context, token);
+  v1::AddSamplesResponse retried;
+  ASSERT_TRUE(stub->AddSamples(&retry_context, Samples(id, "batch-1"), &retried).ok());
+  EXPECT_EQ(retried.stats().moveable_samples() + retried.stats().non_moveable_samples(), 60u);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace relmap
