@@ -76,6 +76,21 @@ grpc::Status RelevanceClient::PostOutcome(const SessionHandle& session, std::uin
   return stub_->PostOutcome(&context, request, response);
 }
 
+grpc::Status RelevanceClient::PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
+                                          std::uint32_t supervoxel_id, const v1::Cloud& after_cloud,
+                                          const std::string& request_id,
+                                          v1::PostOutcomeResponse* response) {
+  grpc::ClientContext context;
+  Authorise(context, session);
+  v1::PostOutcomeRequest request;
+  request.set_session_id(session.id);
+  request.set_frame_id(frame_id);
+  request.set_supervoxel_id(supervoxel_id);
+  *request.mutable_after_cloud() = after_cloud;
+  request.set_request_id(request_id);
+  return stub_->PostOutcome(&context, request, response);
+}
+
 v1::Cloud PcdCloud(std::string pcd_bytes) {
   v1::Cloud cloud;
   cloud.set_pcd(std::move(pcd_bytes));

@@ -34,6 +34,10 @@ class RelevanceClient {
   grpc::Status PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
                            std::uint32_t supervoxel_id, v1::Label label,
                            const std::string& request_id, v1::PostOutcomeResponse* response);
+  // The outcome as the cloud after the push: the server's change detector labels it.
+  grpc::Status PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
+                           std::uint32_t supervoxel_id, const v1::Cloud& after_cloud,
+                           const std::string& request_id, v1::PostOutcomeResponse* response);
 
   v1::RelevanceService::Stub& stub() { return *stub_; }
 

@@ -25,8 +25,8 @@ constexpr std::string_view kUsage =
     "  list\n"
     "  delete  --session ID --token T\n"
     "  maps    --session ID --token T --cloud file.pcd\n"
-    "  post    --session ID --token T --frame F --supervoxel S --label moveable|not-moveable\n"
-    "          [--request-id R]\n"
+    "  post    --session ID --token T --frame F --supervoxel S\n"
+    "          (--label moveable|not-moveable | --after-cloud after.pcd) [--request-id R]\n"
     "  --server defaults to $RELMAP_SERVER or 127.0.0.1:50051; --session and --token to\n"
     "  $RELMAP_SESSION and $RELMAP_TOKEN.\n";
 
@@ -118,17 +118,27 @@ int main(int argc, char** argv) {
   if (command == "delete") {
     return Print(relevance.DeleteSession(session()), v1::DeleteSessionResponse{});
   }
-  if (command == "maps") {
-    const client::SessionHandle handle = session();
-    const std::string path = required("cloud");
+  const auto read_cloud = [](const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) ExitWithError("relmap", "cannot open " + path);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return client::PcdCloud(
+        std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+  };
+  if (command == "maps") {
+    const client::SessionHandle handle = session();
     v1::ComputeMapsResponse response;
     const grpc::Status status =
-        relevance.ComputeMaps(handle, client::PcdCloud(std::move(bytes)), &response);
+        relevance.ComputeMaps(handle, read_cloud(required("cloud")), &response);
     response.clear_point_labels();  // one per pixel: too long for a terminal
     return Print(status, response);
+  }
+  if (command == "post" && flags.count("after-cloud")) {
+    v1::PostOutcomeResponse response;
+    return Print(
+        relevance.PostOutcome(session(), static_cast<std::uint64_t>(number("frame")),
+                              static_cast<std::uint32_t>(number("supervoxel")),
+                              read_cloud(flag("after-cloud")), flag("request-id"), &response),
+        response);
   }
   if (command == "post") {
     const std::string label = required("label");

@@ -31,6 +31,17 @@ StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& co
     voxels.crop = {true,        box.min_x(), box.max_x(), box.min_y(),
                    box.max_y(), box.min_z(), box.max_z()};
   }
+  auto& change = settings.perception.change;
+  const v1::ChangeDetectorConfig& cd = config.change_detector();
+  if (cd.has_octree_resolution()) change.octree_resolution = cd.octree_resolution();
+  if (cd.has_depth_noise()) change.depth_noise = cd.depth_noise();
+  if (cd.has_sor_mean_k()) change.sor_mean_k = cd.sor_mean_k();
+  if (cd.has_sor_stddev_mul()) change.sor_stddev_mul = cd.sor_stddev_mul();
+  if (cd.has_ror_radius()) change.ror_radius = cd.ror_radius();
+  if (cd.has_ror_min_neighbours()) change.ror_min_neighbours = cd.ror_min_neighbours();
+  if (cd.has_icp_max_iterations()) change.icp_max_iterations = cd.icp_max_iterations();
+  if (cd.has_icp_max_correspondence()) change.icp_max_correspondence = cd.icp_max_correspondence();
+  if (cd.has_max_fitness()) change.max_fitness = cd.max_fitness();
   if (config.feature_dimension() != 0) {
     settings.feature_dimension =
         static_cast<int>(std::min<std::uint32_t>(config.feature_dimension(), 1u << 20));
@@ -60,6 +71,17 @@ v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings) {
     box->set_min_y(voxels.crop.min_y), box->set_max_y(voxels.crop.max_y);
     box->set_min_z(voxels.crop.min_z), box->set_max_z(voxels.crop.max_z);
   }
+  const auto& change = settings.perception.change;
+  auto* cd = config.mutable_change_detector();
+  cd->set_octree_resolution(change.octree_resolution);
+  cd->set_depth_noise(change.depth_noise);
+  cd->set_sor_mean_k(change.sor_mean_k);
+  cd->set_sor_stddev_mul(change.sor_stddev_mul);
+  cd->set_ror_radius(change.ror_radius);
+  cd->set_ror_min_neighbours(change.ror_min_neighbours);
+  cd->set_icp_max_iterations(change.icp_max_iterations);
+  cd->set_icp_max_correspondence(change.icp_max_correspondence);
+  cd->set_max_fitness(change.max_fitness);
   config.set_seed(settings.classifier.seed);
   config.set_feature_dimension(static_cast<std::uint32_t>(settings.feature_dimension));
   return config;
@@ -73,6 +95,16 @@ void FillStats(const session::SessionStats& stats, v1::SessionStats* out) {
   out->set_frames(stats.frames);
   out->set_created_unix_ms(stats.created_unix_ms);
   out->set_last_used_unix_ms(stats.last_used_unix_ms);
+}
+
+void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence* out) {
+  out->set_moved(evidence.moved);
+  out->set_difference_points(evidence.difference_points);
+  out->set_after_statistical(evidence.after_statistical);
+  out->set_after_radius(evidence.after_radius);
+  out->set_icp_converged(evidence.icp_converged);
+  out->set_icp_fitness(evidence.icp_fitness);
+  out->set_elapsed_ms(evidence.elapsed_ms);
 }
 
 StatusOr<perception::Cloud> CloudFromProto(const v1::Cloud& cloud,

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "common/status.h"
+#include "perception/change_detector.h"
 #include "perception/cloud.h"
 #include "relmap/v1/relevance_service.pb.h"
 #include "session/session.h"
@@ -17,6 +18,8 @@ StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& co
 v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings);
 
 void FillStats(const session::SessionStats& stats, v1::SessionStats* out);
+
+void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence* out);
 
 // The decoded cloud of a request: PCD bytes or the packed layout, validated.
 StatusOr<perception::Cloud> CloudFromProto(const v1::Cloud& cloud,

@@ -180,16 +180,22 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
   return Logged("PostOutcome", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    const int label = ClassOf(request->label());
-    if (label < 0) {
-      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                          "label must be LABEL_MOVEABLE or LABEL_NOT_MOVEABLE");
+    StatusOr<session::Outcome> outcome = InvalidArgumentError(
+        "the outcome needs a label (LABEL_MOVEABLE or LABEL_NOT_MOVEABLE) or an after_cloud");
+    if (request->has_after_cloud()) {
+      auto after = CloudFromProto(request->after_cloud(), limits_);
+      if (!after.ok()) return ToGrpcStatus(after.status());
+      outcome = (*session)->PostOutcomeFromCloud(request->frame_id(), request->supervoxel_id(),
+                                                 std::move(after).value(), request->request_id(),
+                                                 NowUnixMs());
+    } else if (const int label = ClassOf(request->label()); label >= 0) {
+      outcome = (*session)->PostOutcome(request->frame_id(), request->supervoxel_id(), label,
+                                        request->request_id(), NowUnixMs());
     }
-    auto stats = (*session)->PostOutcome(request->frame_id(), request->supervoxel_id(), label,
-                                         request->request_id(), NowUnixMs());
-    if (!stats.ok()) return ToGrpcStatus(stats.status());
-    response->set_label(request->label());
-    FillStats(*stats, response->mutable_stats());
+    if (!outcome.ok()) return ToGrpcStatus(outcome.status());
+    response->set_label(outcome->label == 1 ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE);
+    FillStats(outcome->stats, response->mutable_stats());
+    if (outcome->evidence) FillEvidence(*outcome->evidence, response->mutable_evidence());
     return grpc::Status::OK;
   });
 }

@@ -77,13 +77,8 @@ StatusOr<MappedFrame> Session::ComputeMaps(perception::Cloud cloud, std::int64_t
   return mapped;
 }
 
-StatusOr<SessionStats> Session::PostOutcome(std::uint64_t frame_id, std::uint32_t supervoxel_id,
-                                            int label, const std::string& request_id,
-                                            std::int64_t now_unix_ms) {
-  std::lock_guard lock(mutex_);
-  if (!request_id.empty()) {
-    if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
-  }
+StatusOr<std::shared_ptr<const perception::Frame>> Session::FrameForOutcomeLocked(
+    std::uint64_t frame_id, std::uint32_t supervoxel_id) const {
   const MappedFrame* mapped = nullptr;
   for (const MappedFrame& f : frames_cache_) {
     if (f.frame_id == frame_id) mapped = &f;
@@ -99,21 +94,75 @@ StatusOr<SessionStats> Session::PostOutcome(std::uint64_t frame_id, std::uint32_
                                 std::to_string(features.rows()) + " supervoxels, no id " +
                                 std::to_string(supervoxel_id));
   }
-  if (label != 0 && label != 1) return InvalidArgumentError("label must be 0 or 1");
-  const auto row = static_cast<Eigen::Index>(supervoxel_id);
-  if (!features.row(row).allFinite()) {
+  if (!features.row(static_cast<Eigen::Index>(supervoxel_id)).allFinite()) {
     return InvalidArgumentError("supervoxel " + std::to_string(supervoxel_id) + " of frame " +
                                 std::to_string(frame_id) +
                                 " has non-finite features and cannot be learned");
   }
+  return mapped->frame;
+}
+
+StatusOr<Outcome> Session::LearnOutcomeLocked(const perception::Frame& frame,
+                                              std::uint32_t supervoxel_id, int label,
+                                              const std::string& request_id,
+                                              std::optional<perception::ChangeEvidence> evidence,
+                                              std::int64_t now_unix_ms) {
   const std::string key = request_id.empty() ? "auto-" + RandomHex(12) : request_id;
-  if (Status status = PersistAndLearn(key, features.row(row).transpose(), label); !status.ok()) {
+  const auto row = static_cast<Eigen::Index>(supervoxel_id);
+  if (Status status = PersistAndLearn(key, frame.features.values.row(row).transpose(), label);
+      !status.ok()) {
     return status;
   }
   last_used_unix_ms_ = now_unix_ms;
-  SessionStats stats = StatsLocked();
-  if (!request_id.empty()) answered_[request_id] = stats;
-  return stats;
+  Outcome outcome{StatsLocked(), label, std::move(evidence)};
+  if (!request_id.empty()) answered_[request_id] = outcome;
+  return outcome;
+}
+
+StatusOr<Outcome> Session::PostOutcome(std::uint64_t frame_id, std::uint32_t supervoxel_id,
+                                       int label, const std::string& request_id,
+                                       std::int64_t now_unix_ms) {
+  std::lock_guard lock(mutex_);
+  if (!request_id.empty()) {
+    if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
+  }
+  if (label != 0 && label != 1) return InvalidArgumentError("label must be 0 or 1");
+  auto frame = FrameForOutcomeLocked(frame_id, supervoxel_id);
+  if (!frame.ok()) return frame.status();
+  return LearnOutcomeLocked(**frame, supervoxel_id, label, request_id, std::nullopt, now_unix_ms);
+}
+
+StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uint32_t supervoxel_id,
+                                                perception::Cloud after,
+                                                const std::string& request_id,
+                                                std::int64_t now_unix_ms) {
+  std::shared_ptr<const perception::Frame> frame;
+  {
+    std::lock_guard lock(mutex_);
+    if (!request_id.empty()) {
+      if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
+    }
+    auto found = FrameForOutcomeLocked(frame_id, supervoxel_id);
+    if (!found.ok()) return found.status();
+    frame = std::move(found).value();
+  }
+  // The detector (tens of milliseconds) runs without the lock; the frame is
+  // shared, so an eviction meanwhile does not pull it away.
+  std::vector<Eigen::Vector3f> target;
+  for (const auto& voxel : frame->segmentation.supervoxels[supervoxel_id].voxels) {
+    target.push_back(voxel.position);
+  }
+  auto evidence =
+      perception::DetectChange(frame->cloud, after, target, settings_.perception.change);
+  if (!evidence.ok()) return evidence.status();
+  const int label = evidence->moved ? 1 : 0;
+
+  std::lock_guard lock(mutex_);
+  if (!request_id.empty()) {
+    if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
+  }
+  return LearnOutcomeLocked(*frame, supervoxel_id, label, request_id, std::move(evidence).value(),
+                            now_unix_ms);
 }
 
 Status Session::CheckFeatures(const Eigen::MatrixXd& features) const {
@@ -155,7 +204,7 @@ StatusOr<SessionStats> Session::AddSamples(const Eigen::MatrixXd& features,
   }
   std::lock_guard lock(mutex_);
   if (!request_id.empty()) {
-    if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
+    if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second.stats;
   }
   // One store key per sample: a retried batch skips what was committed already.
   const std::string prefix = request_id.empty() ? "auto-" + RandomHex(12) : request_id;
@@ -168,9 +217,9 @@ StatusOr<SessionStats> Session::AddSamples(const Eigen::MatrixXd& features,
     }
   }
   last_used_unix_ms_ = now_unix_ms;
-  SessionStats stats = StatsLocked();
-  if (!request_id.empty()) answered_[request_id] = stats;
-  return stats;
+  Outcome outcome{StatsLocked(), -1, std::nullopt};
+  if (!request_id.empty()) answered_[request_id] = outcome;
+  return outcome.stats;
 }
 
 Status Session::PersistAndLearn(const std::string& request_id, const Eigen::VectorXd& x,

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "cmm/random.h"
 #include "common/status.h"
 #include "exploration/frame_maps.h"
+#include "perception/change_detector.h"
 #include "perception/frame.h"
 #include "session/session_settings.h"
 #include "session/session_store.h"
@@ -28,6 +30,14 @@ struct SessionStats {
   std::uint64_t frames = 0;
   std::int64_t created_unix_ms = 0;
   std::int64_t last_used_unix_ms = 0;
+};
+
+// What an outcome taught the session.
+struct Outcome {
+  SessionStats stats;
+  int label = -1;  // 0 or 1 as learned
+  // Set when the label came from the change detector.
+  std::optional<perception::ChangeEvidence> evidence;
 };
 
 // A frame with its maps, as ComputeMaps returns it.
@@ -64,8 +74,14 @@ class Session {
   // An unknown or evicted frame → FAILED_PRECONDITION; a supervoxel the frame does
   // not have, or one with non-finite features → INVALID_ARGUMENT. A request id
   // seen before returns the first answer and learns nothing.
-  StatusOr<SessionStats> PostOutcome(std::uint64_t frame_id, std::uint32_t supervoxel_id, int label,
-                                     const std::string& request_id, std::int64_t now_unix_ms);
+  StatusOr<Outcome> PostOutcome(std::uint64_t frame_id, std::uint32_t supervoxel_id, int label,
+                                const std::string& request_id, std::int64_t now_unix_ms);
+
+  // The same, with the label decided by the change detector (ALGORITHMS §5) from
+  // the frame's cloud and `after`, the cloud after the push.
+  StatusOr<Outcome> PostOutcomeFromCloud(std::uint64_t frame_id, std::uint32_t supervoxel_id,
+                                         perception::Cloud after, const std::string& request_id,
+                                         std::int64_t now_unix_ms);
 
   // Relevance and choice maps of raw feature vectors (one per row); no target is
   // drawn and nothing is learned.
@@ -83,6 +99,16 @@ class Session {
   Session(std::string id, std::string token_hash, SessionSettings settings,
           cmm::CollaborativeMixtureModels model, std::int64_t now_unix_ms, SessionStore* store);
   SessionStats StatsLocked() const;
+  // The cached frame `frame_id`, after checking that it has a learnable
+  // supervoxel `supervoxel_id`.
+  StatusOr<std::shared_ptr<const perception::Frame>> FrameForOutcomeLocked(
+      std::uint64_t frame_id, std::uint32_t supervoxel_id) const;
+  // Persists and learns the supervoxel's features with `label`, and remembers the
+  // answer under `request_id`.
+  StatusOr<Outcome> LearnOutcomeLocked(const perception::Frame& frame, std::uint32_t supervoxel_id,
+                                       int label, const std::string& request_id,
+                                       std::optional<perception::ChangeEvidence> evidence,
+                                       std::int64_t now_unix_ms);
   Status CheckFeatures(const Eigen::MatrixXd& features) const;
   // Commits a sample to the store (if any) and learns it, unless the store had
   // it already under this request id (a retry after a restart).
@@ -100,7 +126,7 @@ class Session {
   std::uint64_t frames_ = 0;
   std::uint64_t interactions_ = 0;
   std::deque<MappedFrame> frames_cache_;
-  std::map<std::string, SessionStats> answered_;  // request id → the answer given
+  std::map<std::string, Outcome> answered_;  // request id → the answer given
   std::int64_t created_unix_ms_;
   std::int64_t last_used_unix_ms_;
 };

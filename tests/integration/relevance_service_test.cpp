@@ -15,11 +15,11 @@ namespace {
 
 using v1::RelevanceService;
 
-// A synthetic 320×240 tabletop in the packed layout of the API.
-v1::Cloud PackedTabletop() {
+// A synthetic tabletop (320×240 by default) in the packed layout of the API.
+v1::Cloud PackedTabletop(std::uint32_t width = 320, std::uint32_t height = 240) {
   perception::SyntheticTabletopOptions options;
-  options.width = 320;
-  options.height = 240;
+  options.width = width;
+  options.height = height;
   const perception::SyntheticTabletop scene = perception::MakeSyntheticTabletop(options);
   std::string bytes;
   for (const perception::CloudPoint& p : scene.cloud.points()) {
@@ -132,6 +132,68 @@ TEST_F(RelevanceServer, OutcomesAreLearnedOncePerRequestId) {
   ASSERT_TRUE(ComputeMaps(id, token, PackedTabletop(), &next).ok());
   EXPECT_GT(next.supervoxels(static_cast<int>(maps.target_supervoxel_id())).relevance(), 0.5);
   EXPECT_GT(next.supervoxels(static_cast<int>(second_moveable)).relevance(), 0.5);
+}
+
+TEST_F(RelevanceServer, TheChangeDetectorLabelsFromTheAfterCloud) {
+  const auto [id, token] = Create();
+  // 640×480: the detector's outlier filters (§5: at least 20 neighbours within
+  // 1 cm) are tuned to a Kinect's density at that resolution.
+  const v1::Cloud before = PackedTabletop(640, 480);
+  v1::ComputeMapsResponse maps;
+  ASSERT_TRUE(ComputeMaps(id, token, before, &maps).ok());
+  // The supervoxel nearest to the camera (the depth-noise allowance of the
+  // detector grows with z²), and an after cloud in which its points are gone.
+  std::uint32_t target = 0;
+  float nearest = std::numeric_limits<float>::infinity();
+  for (const v1::Supervoxel& sv : maps.supervoxels()) {
+    if (sv.point_count() >= 50 && sv.centroid().z() < nearest) {
+      nearest = sv.centroid().z();
+      target = sv.id();
+    }
+  }
+  // Gone: every supervoxel within 8 cm of it, as when an object is taken away
+  // (a lone 5 cm patch is within the detector's noise allowance of its border).
+  const v1::Vector3& centre = maps.supervoxels(static_cast<int>(target)).centroid();
+  std::vector<bool> removed_supervoxel(static_cast<std::size_t>(maps.supervoxels_size()));
+  for (const v1::Supervoxel& sv : maps.supervoxels()) {
+    const float dx = sv.centroid().x() - centre.x(), dy = sv.centroid().y() - centre.y(),
+                dz = sv.centroid().z() - centre.z();
+    removed_supervoxel[sv.id()] = dx * dx + dy * dy + dz * dz < 0.08f * 0.08f;
+  }
+  v1::Cloud after = before;
+  std::string points = after.packed().points();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int i = 0; i < maps.point_labels_size(); ++i) {
+    const std::int32_t label = maps.point_labels(i);
+    if (label >= 0 && removed_supervoxel[static_cast<std::size_t>(label)]) {
+      std::memcpy(&points[static_cast<std::size_t>(i) * 16], &nan, 4);
+    }
+  }
+  after.mutable_packed()->set_points(points);
+
+  const auto post = [&](const v1::Cloud& cloud, const std::string& request_id,
+                        v1::PostOutcomeResponse* response) {
+    grpc::ClientContext context;
+    Authorise(context, token);
+    v1::PostOutcomeRequest request;
+    request.set_session_id(id);
+    request.set_frame_id(maps.frame_id());
+    request.set_supervoxel_id(target);
+    *request.mutable_after_cloud() = cloud;
+    request.set_request_id(request_id);
+    return stub_->PostOutcome(&context, request, response);
+  };
+  v1::PostOutcomeResponse unchanged;
+  ASSERT_TRUE(post(before, "same", &unchanged).ok());
+  EXPECT_EQ(unchanged.label(), v1::LABEL_NOT_MOVEABLE);
+  EXPECT_FALSE(unchanged.evidence().moved());
+  EXPECT_EQ(unchanged.stats().non_moveable_samples(), 1u);
+  v1::PostOutcomeResponse removed;
+  ASSERT_TRUE(post(after, "removed", &removed).ok());
+  EXPECT_EQ(removed.label(), v1::LABEL_MOVEABLE);
+  EXPECT_TRUE(removed.evidence().moved()) << removed.evidence().ShortDebugString();
+  EXPECT_GT(removed.evidence().difference_points(), 0u);
+  EXPECT_EQ(removed.stats().moveable_samples(), 1u);
 }
 
 TEST_F(RelevanceServer, BadOutcomesGetPreciseStatuses) {

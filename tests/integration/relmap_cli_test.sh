@@ -39,6 +39,7 @@ if [ -f "$cloud" ]; then
   target=$(sed -E 's/.*"targetSupervoxelId":([0-9]+).*/\1/' <<<"$maps")
   check post grep -q '"moveableSamples":"1"' <<<"$("$cli" post --frame 1 --supervoxel "$target" --label moveable --request-id r1)"
   check repost grep -q '"moveableSamples":"1"' <<<"$("$cli" post --frame 1 --supervoxel "$target" --label moveable --request-id r1)"
+  check after-cloud-unchanged grep -q '"label":"LABEL_NOT_MOVEABLE"' <<<"$("$cli" post --frame 1 --supervoxel "$target" --after-cloud "$cloud" --request-id r2)"
   check stale-frame test "$("$cli" post --frame 99 --supervoxel 0 --label moveable 2>&1 | grep -c 'code 9')" = 1
 else
   echo "skip maps/post: $cloud not found"
