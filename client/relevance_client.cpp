@@ -16,9 +16,14 @@ void RelevanceClient::Authorise(grpc::ClientContext& context, const SessionHandl
   context.AddMetadata("x-relmap-session", session.id);
 }
 
+void RelevanceClient::AddAdminKey(grpc::ClientContext& context) const {
+  if (!admin_key_.empty()) context.AddMetadata("x-relmap-admin-key", admin_key_);
+}
+
 grpc::Status RelevanceClient::CreateSession(const v1::SessionConfig& config, SessionHandle* session,
                                             v1::CreateSessionResponse* response) {
   grpc::ClientContext context;
+  AddAdminKey(context);
   v1::CreateSessionRequest request;
   *request.mutable_config() = config;
   v1::CreateSessionResponse local;
@@ -39,12 +44,14 @@ grpc::Status RelevanceClient::GetSession(const SessionHandle& session,
 
 grpc::Status RelevanceClient::ListSessions(v1::ListSessionsResponse* response) {
   grpc::ClientContext context;
+  AddAdminKey(context);
   return stub_->ListSessions(&context, v1::ListSessionsRequest{}, response);
 }
 
 grpc::Status RelevanceClient::DeleteSession(const SessionHandle& session) {
   grpc::ClientContext context;
   Authorise(context, session);
+  AddAdminKey(context);
   v1::DeleteSessionRequest request;
   request.set_session_id(session.id);
   v1::DeleteSessionResponse response;

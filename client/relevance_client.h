@@ -39,6 +39,10 @@ class RelevanceClient {
                            std::uint32_t supervoxel_id, const v1::Cloud& after_cloud,
                            const std::string& request_id, v1::PostOutcomeResponse* response);
 
+  // The admin key sent with CreateSession, ListSessions and DeleteSession, for
+  // servers started with one.
+  void set_admin_key(std::string key) { admin_key_ = std::move(key); }
+
   v1::RelevanceService::Stub& stub() { return *stub_; }
 
  private:
@@ -46,7 +50,10 @@ class RelevanceClient {
   // x-relmap-session for load balancers that route by session.
   static void Authorise(grpc::ClientContext& context, const SessionHandle& session);
 
+  void AddAdminKey(grpc::ClientContext& context) const;
+
   std::unique_ptr<v1::RelevanceService::Stub> stub_;
+  std::string admin_key_;
 };
 
 // A cloud message carrying the bytes of a PCD file.

@@ -28,7 +28,8 @@ constexpr std::string_view kUsage =
     "  post    --session ID --token T --frame F --supervoxel S\n"
     "          (--label moveable|not-moveable | --after-cloud after.pcd) [--request-id R]\n"
     "  --server defaults to $RELMAP_SERVER or 127.0.0.1:50051; --session and --token to\n"
-    "  $RELMAP_SESSION and $RELMAP_TOKEN.\n";
+    "  $RELMAP_SESSION and $RELMAP_TOKEN; --admin-key (create, list, delete) to\n"
+    "  $RELMAP_ADMIN_KEY.\n";
 
 [[noreturn]] void Usage(const std::string& message) {
   ExitWithError("relmap", message + "\n" + std::string(kUsage));
@@ -85,6 +86,7 @@ int main(int argc, char** argv) {
 
   client::RelevanceClient relevance(
       flag("server", FromEnvironment("RELMAP_SERVER", "127.0.0.1:50051")));
+  relevance.set_admin_key(flag("admin-key", FromEnvironment("RELMAP_ADMIN_KEY", "")));
   const auto session = [&] {
     return client::SessionHandle{required("session", "RELMAP_SESSION"),
                                  required("token", "RELMAP_TOKEN")};

@@ -18,6 +18,7 @@
 
 #include "service/relevance_service.h"
 #include "service/session_restore.h"
+#include "session/credentials.h"
 #include "session/session_registry.h"
 #include "session/sqlite_session_store.h"
 #include "tools/command_line.h"
@@ -27,10 +28,13 @@ namespace {
 constexpr std::string_view kUsage =
     "usage: relmap-server [--listen 127.0.0.1:50051] [--max-message-mb 64] [--max-sessions 1000]\n"
     "                     [--max-points 1228800] [--port-file PATH] [--data-dir DIR]\n"
+    "                     [--admin-key-file PATH]\n"
     "  --listen      address to serve on; port 0 picks a free port\n"
     "  --port-file   write the port actually bound there (for tests and scripts)\n"
     "  --data-dir    keep sessions and samples in DIR/relmap.sqlite (WAL) and restore them\n"
-    "                at start-up; without it sessions live in memory only\n";
+    "                at start-up; without it sessions live in memory only\n"
+    "  --admin-key-file  a file holding the admin key that create, list and delete need\n"
+    "                (as 'x-relmap-admin-key' metadata); default $RELMAP_ADMIN_KEY, or none\n";
 
 struct Options {
   std::string listen = "127.0.0.1:50051";
@@ -39,6 +43,7 @@ struct Options {
   long long max_points = 1280LL * 960LL;
   std::string port_file;
   std::string data_dir;
+  std::string admin_key;
 };
 
 Options ParseArguments(int argc, char** argv) {
@@ -66,10 +71,18 @@ Options ParseArguments(int argc, char** argv) {
       options.port_file = value;
     } else if (flag == "--data-dir") {
       options.data_dir = value;
+    } else if (flag == "--admin-key-file") {
+      std::ifstream in(value);
+      if (!(in >> options.admin_key)) {
+        ExitWithError("relmap-server", std::string("cannot read an admin key from ") + value);
+      }
     } else {
       ExitWithError("relmap-server",
                     "unknown argument '" + std::string(flag) + "'\n" + std::string(kUsage));
     }
+  }
+  if (options.admin_key.empty()) {
+    if (const char* key = std::getenv("RELMAP_ADMIN_KEY"); key != nullptr) options.admin_key = key;
   }
   if (options.max_message_mb < 1 || options.max_sessions < 1 || options.max_points < 1) {
     ExitWithError("relmap-server", "limits must be positive");
@@ -117,7 +130,9 @@ int main(int argc, char** argv) {
   relmap::perception::DecodeLimits limits;
   limits.max_points = options.max_points;
   limits.max_bytes = static_cast<long long>(options.max_message_mb) << 20;
-  relmap::service::RelevanceService service(registry, limits);
+  relmap::service::RelevanceService service(
+      registry, limits,
+      options.admin_key.empty() ? std::string() : relmap::session::Sha256Hex(options.admin_key));
 
   grpc::EnableDefaultHealthCheckService(true);
   // Without this call Debian's --as-needed link silently drops reflection.

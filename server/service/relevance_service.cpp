@@ -75,11 +75,28 @@ StatusOr<std::shared_ptr<session::Session>> RelevanceService::Authorised(
   return session;
 }
 
-grpc::Status RelevanceService::CreateSession(grpc::ServerContext*,
+Status RelevanceService::AdminAuthorised(const grpc::ServerContext& context) const {
+  if (admin_key_hash_.empty()) return OkStatus();
+  const auto& metadata = context.client_metadata();
+  const auto header = metadata.find("x-relmap-admin-key");
+  if (header == metadata.end()) {
+    return Status(
+        StatusCode::kUnauthenticated,
+        "this server needs 'x-relmap-admin-key' metadata to create, list or delete sessions");
+  }
+  if (!session::TokenMatches(std::string_view(header->second.data(), header->second.size()),
+                             admin_key_hash_)) {
+    return Status(StatusCode::kPermissionDenied, "wrong admin key");
+  }
+  return OkStatus();
+}
+
+grpc::Status RelevanceService::CreateSession(grpc::ServerContext* context,
                                              const v1::CreateSessionRequest* request,
                                              v1::CreateSessionResponse* response) {
   std::string id;
   return Logged("CreateSession", id, [&] {
+    if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
     auto settings = SettingsFromProto(request->config());
     if (!settings.ok()) return ToGrpcStatus(settings.status());
     // The store keeps the filled-in config, from which a restart rebuilds the settings.
@@ -107,9 +124,11 @@ grpc::Status RelevanceService::GetSession(grpc::ServerContext* context,
   });
 }
 
-grpc::Status RelevanceService::ListSessions(grpc::ServerContext*, const v1::ListSessionsRequest*,
+grpc::Status RelevanceService::ListSessions(grpc::ServerContext* context,
+                                            const v1::ListSessionsRequest*,
                                             v1::ListSessionsResponse* response) {
   return Logged("ListSessions", "", [&] {
+    if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
     for (const auto& session : registry_.List()) {
       v1::GetSessionResponse* entry = response->add_sessions();
       entry->set_session_id(session->id());
@@ -124,8 +143,13 @@ grpc::Status RelevanceService::DeleteSession(grpc::ServerContext* context,
                                              const v1::DeleteSessionRequest* request,
                                              v1::DeleteSessionResponse*) {
   return Logged("DeleteSession", request->session_id(), [&] {
-    auto session = Authorised(*context, request->session_id());
-    if (!session.ok()) return ToGrpcStatus(session.status());
+    // With an admin key the administrator deletes any session; without one, the
+    // session's own token is needed.
+    if (!admin_key_hash_.empty()) {
+      if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
+    } else if (auto session = Authorised(*context, request->session_id()); !session.ok()) {
+      return ToGrpcStatus(session.status());
+    }
     return ToGrpcStatus(registry_.Delete(request->session_id()));
   });
 }

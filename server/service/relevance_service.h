@@ -15,8 +15,11 @@ namespace relmap::service {
 
 class RelevanceService final : public v1::RelevanceService::Service {
  public:
-  RelevanceService(session::SessionRegistry& registry, perception::DecodeLimits limits)
-      : registry_(registry), limits_(limits) {}
+  // `admin_key_hash`: SHA-256 hex of the admin key that guards CreateSession,
+  // ListSessions and DeleteSession, or empty for none.
+  RelevanceService(session::SessionRegistry& registry, perception::DecodeLimits limits,
+                   std::string admin_key_hash = {})
+      : registry_(registry), limits_(limits), admin_key_hash_(std::move(admin_key_hash)) {}
 
   grpc::Status CreateSession(grpc::ServerContext* context, const v1::CreateSessionRequest* request,
                              v1::CreateSessionResponse* response) override;
@@ -43,8 +46,13 @@ class RelevanceService final : public v1::RelevanceService::Service {
   StatusOr<std::shared_ptr<session::Session>> Authorised(const grpc::ServerContext& context,
                                                          const std::string& id) const;
 
+  // OK when no admin key is configured or the call's `x-relmap-admin-key`
+  // matches; UNAUTHENTICATED without one, PERMISSION_DENIED with a wrong one.
+  Status AdminAuthorised(const grpc::ServerContext& context) const;
+
   session::SessionRegistry& registry_;
   const perception::DecodeLimits limits_;
+  const std::string admin_key_hash_;
 };
 
 }  // namespace relmap::service

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <numeric>
 
 #include "integration/server_process.h"
@@ -319,6 +321,41 @@ TEST(RelevanceServerLimits, OversizedMessagesAreResourceExhausted) {
   v1::ComputeMapsResponse response;
   EXPECT_EQ(stub->ComputeMaps(&maps_context, request, &response).error_code(),
             grpc::StatusCode::RESOURCE_EXHAUSTED);
+}
+
+TEST(RelevanceServerAdminKey, GuardsCreateListAndDelete) {
+  const std::string key_file = ::testing::TempDir() + "/relmap_admin_key";
+  std::ofstream(key_file) << "s3cret\n";
+  testing::ServerProcess server({"--admin-key-file", key_file});
+  auto stub = RelevanceService::NewStub(server.Channel());
+  v1::CreateSessionResponse created;
+  grpc::ClientContext without;
+  EXPECT_EQ(stub->CreateSession(&without, {}, &created).error_code(),
+            grpc::StatusCode::UNAUTHENTICATED);
+  grpc::ClientContext wrong;
+  wrong.AddMetadata("x-relmap-admin-key", "guess");
+  EXPECT_EQ(stub->CreateSession(&wrong, {}, &created).error_code(),
+            grpc::StatusCode::PERMISSION_DENIED);
+  grpc::ClientContext right;
+  right.AddMetadata("x-relmap-admin-key", "s3cret");
+  ASSERT_TRUE(stub->CreateSession(&right, {}, &created).ok());
+
+  v1::ListSessionsResponse listed;
+  grpc::ClientContext list_without;
+  EXPECT_EQ(stub->ListSessions(&list_without, {}, &listed).error_code(),
+            grpc::StatusCode::UNAUTHENTICATED);
+  // The session token alone does not delete when an admin key is set.
+  grpc::ClientContext token_only;
+  token_only.AddMetadata("authorization", "Bearer " + created.session_token());
+  v1::DeleteSessionRequest remove;
+  remove.set_session_id(created.session_id());
+  v1::DeleteSessionResponse removed;
+  EXPECT_EQ(stub->DeleteSession(&token_only, remove, &removed).error_code(),
+            grpc::StatusCode::UNAUTHENTICATED);
+  grpc::ClientContext admin;
+  admin.AddMetadata("x-relmap-admin-key", "s3cret");
+  EXPECT_TRUE(stub->DeleteSession(&admin, remove, &removed).ok());
+  std::remove(key_file.c_str());
 }
 
 TEST(RelevanceServerLifecycle, SigtermStopsTheServerCleanly) {
