@@ -3,6 +3,7 @@
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/resource_quota.h>
 #include <signal.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -12,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -28,13 +30,16 @@ namespace {
 constexpr std::string_view kUsage =
     "usage: relmap-server [--listen 127.0.0.1:50051] [--max-message-mb 64] [--max-sessions 1000]\n"
     "                     [--max-points 1228800] [--port-file PATH] [--data-dir DIR]\n"
-    "                     [--admin-key-file PATH]\n"
+    "                     [--admin-key-file PATH] [--tls-cert FILE --tls-key FILE]\n"
+    "                     [--max-threads 16]\n"
     "  --listen      address to serve on; port 0 picks a free port\n"
     "  --port-file   write the port actually bound there (for tests and scripts)\n"
     "  --data-dir    keep sessions and samples in DIR/relmap.sqlite (WAL) and restore them\n"
     "                at start-up; without it sessions live in memory only\n"
     "  --admin-key-file  a file holding the admin key that create, list and delete need\n"
-    "                (as 'x-relmap-admin-key' metadata); default $RELMAP_ADMIN_KEY, or none\n";
+    "                (as 'x-relmap-admin-key' metadata); default $RELMAP_ADMIN_KEY, or none\n"
+    "  --tls-cert, --tls-key  serve TLS with this PEM certificate chain and private key\n"
+    "  --max-threads  bound of the worker threads; calls beyond it get RESOURCE_EXHAUSTED\n";
 
 struct Options {
   std::string listen = "127.0.0.1:50051";
@@ -44,7 +49,19 @@ struct Options {
   std::string port_file;
   std::string data_dir;
   std::string admin_key;
+  std::string tls_cert;
+  std::string tls_key;
+  int max_threads = 16;
 };
+
+// The whole of a small file (a certificate or key), or ExitWithError.
+std::string ReadFileOrExit(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) relmap::tools::ExitWithError("relmap-server", "cannot read " + path);
+  if (text.empty()) relmap::tools::ExitWithError("relmap-server", path + " is empty or unreadable");
+  return text;
+}
 
 Options ParseArguments(int argc, char** argv) {
   using relmap::tools::ExitWithError;
@@ -71,6 +88,12 @@ Options ParseArguments(int argc, char** argv) {
       options.port_file = value;
     } else if (flag == "--data-dir") {
       options.data_dir = value;
+    } else if (flag == "--tls-cert") {
+      options.tls_cert = value;
+    } else if (flag == "--tls-key") {
+      options.tls_key = value;
+    } else if (flag == "--max-threads") {
+      options.max_threads = static_cast<int>(ParseNumberOrExit("relmap-server", flag, value));
     } else if (flag == "--admin-key-file") {
       std::ifstream in(value);
       if (!(in >> options.admin_key)) {
@@ -84,6 +107,10 @@ Options ParseArguments(int argc, char** argv) {
   if (options.admin_key.empty()) {
     if (const char* key = std::getenv("RELMAP_ADMIN_KEY"); key != nullptr) options.admin_key = key;
   }
+  if (options.tls_cert.empty() != options.tls_key.empty()) {
+    ExitWithError("relmap-server", "--tls-cert and --tls-key go together");
+  }
+  if (options.max_threads < 2) ExitWithError("relmap-server", "--max-threads must be at least 2");
   if (options.max_message_mb < 1 || options.max_sessions < 1 || options.max_points < 1) {
     ExitWithError("relmap-server", "limits must be positive");
   }
@@ -139,7 +166,19 @@ int main(int argc, char** argv) {
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   int port = 0;
-  builder.AddListeningPort(options.listen, grpc::InsecureServerCredentials(), &port);
+  std::shared_ptr<grpc::ServerCredentials> credentials = grpc::InsecureServerCredentials();
+  if (!options.tls_cert.empty()) {
+    grpc::SslServerCredentialsOptions tls;
+    tls.pem_key_cert_pairs.push_back(
+        {ReadFileOrExit(options.tls_key), ReadFileOrExit(options.tls_cert)});
+    credentials = grpc::SslServerCredentials(tls);
+  }
+  builder.AddListeningPort(options.listen, credentials, &port);
+  // A bounded pool of worker threads: when every thread is busy, gRPC answers new
+  // calls with RESOURCE_EXHAUSTED instead of queueing them without bound.
+  grpc::ResourceQuota quota("relmap-server");
+  quota.SetMaxThreads(options.max_threads);
+  builder.SetResourceQuota(quota);
   builder.SetMaxReceiveMessageSize(options.max_message_mb << 20);
   builder.SetMaxSendMessageSize(options.max_message_mb << 20);
   builder.RegisterService(&service);
@@ -148,7 +187,9 @@ int main(int argc, char** argv) {
     spdlog::error("cannot listen on {}", options.listen);
     return 1;
   }
-  spdlog::info("relmap-server listening on {} (port {})", options.listen, port);
+  spdlog::info("relmap-server listening on {} (port {}, {}, at most {} worker threads)",
+               options.listen, port, options.tls_cert.empty() ? "plaintext" : "TLS",
+               options.max_threads);
   if (!options.port_file.empty()) std::ofstream(options.port_file) << port << '\n';
 
   std::thread stopper([&] {

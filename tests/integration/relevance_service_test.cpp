@@ -3,10 +3,15 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <numeric>
+#include <thread>
 
 #include "integration/server_process.h"
 #include "perception/synthetic_tabletop.h"
@@ -356,6 +361,65 @@ TEST(RelevanceServerAdminKey, GuardsCreateListAndDelete) {
   admin.AddMetadata("x-relmap-admin-key", "s3cret");
   EXPECT_TRUE(stub->DeleteSession(&admin, remove, &removed).ok());
   std::remove(key_file.c_str());
+}
+
+TEST(RelevanceServerLimits, BusyWorkerPoolAnswersResourceExhausted) {
+  testing::ServerProcess server({"--max-threads", "2"});
+  auto stub = RelevanceService::NewStub(server.Channel());
+  grpc::ClientContext context;
+  v1::CreateSessionResponse created;
+  ASSERT_TRUE(stub->CreateSession(&context, {}, &created).ok());
+  const v1::Cloud cloud = PackedTabletop(640, 480);  // ~0.25 s of work per call
+  std::vector<std::thread> clients;
+  std::atomic<int> ok = 0, exhausted = 0, other = 0;
+  for (int i = 0; i < 8; ++i) {
+    clients.emplace_back([&] {
+      grpc::ClientContext call;
+      call.AddMetadata("authorization", "Bearer " + created.session_token());
+      v1::ComputeMapsRequest request;
+      request.set_session_id(created.session_id());
+      *request.mutable_cloud() = cloud;
+      v1::ComputeMapsResponse response;
+      const grpc::Status status = stub->ComputeMaps(&call, request, &response);
+      if (status.ok()) {
+        ++ok;
+      } else if (status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
+        ++exhausted;
+      } else {
+        ++other;
+      }
+    });
+  }
+  for (std::thread& t : clients) t.join();
+  EXPECT_GT(ok.load(), 0);
+  EXPECT_GT(exhausted.load(), 0);
+  EXPECT_EQ(other.load(), 0);
+}
+
+TEST(RelevanceServerTls, ServesTlsWithTheGivenCertificate) {
+  const std::string dir = ::testing::TempDir();
+  const std::string cert = dir + "/relmap_tls_cert.pem", key = dir + "/relmap_tls_key.pem";
+  const std::string make_certificate =
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=localhost -addext "
+      "subjectAltName=IP:127.0.0.1 -keyout " +
+      key + " -out " + cert + " >/dev/null 2>&1";
+  if (std::system(make_certificate.c_str()) != 0)
+    GTEST_SKIP() << "openssl cannot make a certificate";
+  testing::ServerProcess server({"--tls-cert", cert, "--tls-key", key});
+  std::ifstream in(cert);
+  grpc::SslCredentialsOptions tls;
+  tls.pem_root_certs.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  auto secure =
+      RelevanceService::NewStub(grpc::CreateChannel(server.address(), grpc::SslCredentials(tls)));
+  grpc::ClientContext context;
+  v1::CreateSessionResponse created;
+  EXPECT_TRUE(secure->CreateSession(&context, {}, &created).ok());
+  auto plain = RelevanceService::NewStub(server.Channel());
+  grpc::ClientContext plain_context;
+  plain_context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(2));
+  EXPECT_FALSE(plain->CreateSession(&plain_context, {}, &created).ok());
+  std::remove(cert.c_str());
+  std::remove(key.c_str());
 }
 
 TEST(RelevanceServerLifecycle, SigtermStopsTheServerCleanly) {
