@@ -11,7 +11,7 @@ packages=(
   libode-dev
   libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libsqlite3-dev libssl-dev zlib1g-dev
+  libsqlite3-dev libssl-dev zlib1g-dev openssl
 )
 
 missing=()
