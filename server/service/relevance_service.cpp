@@ -263,3 +263,75 @@ grpc::Status RelevanceService::AddSamples(grpc::ServerContext* context,
 }
 
 }  // namespace relmap::service
+
+namespace relmap::service {
+
+grpc::Status RelevanceService::ExportSession(grpc::ServerContext* context,
+                                             const v1::ExportSessionRequest* request,
+                                             v1::ExportSessionResponse* response) {
+  return Logged("ExportSession", request->session_id(), [&] {
+    auto session = Authorised(*context, request->session_id());
+    if (!session.ok()) return ToGrpcStatus(session.status());
+    const session::SessionState state = (*session)->ExportState();
+    v1::SessionState* out = response->mutable_state();
+    *out->mutable_config() = ProtoFromSettings((*session)->settings());
+    for (Eigen::Index i = 0; i < state.features.rows(); ++i) {
+      v1::LabelledFeature* sample = out->add_samples();
+      for (Eigen::Index k = 0; k < state.features.cols(); ++k) {
+        sample->mutable_feature()->add_values(state.features(i, k));
+      }
+      sample->set_label(state.labels[static_cast<std::size_t>(i)] == 1 ? v1::LABEL_MOVEABLE
+                                                                       : v1::LABEL_NOT_MOVEABLE);
+    }
+    out->mutable_target_rng_state()->Add(state.target_random.begin(), state.target_random.end());
+    out->set_interactions(state.interactions);
+    FillStats((*session)->Stats(), response->mutable_stats());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status RelevanceService::ImportSession(grpc::ServerContext* context,
+                                             const v1::ImportSessionRequest* request,
+                                             v1::ImportSessionResponse* response) {
+  std::string id;
+  return Logged("ImportSession", id, [&] {
+    if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
+    const v1::SessionState& in = request->state();
+    if (in.target_rng_state_size() != 4) {
+      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                          "state.target_rng_state must hold the 4 words of the RNG");
+    }
+    session::SessionState state;
+    google::protobuf::RepeatedPtrField<v1::FeatureVector> vectors;
+    for (const v1::LabelledFeature& sample : in.samples()) {
+      *vectors.Add() = sample.feature();
+      state.labels.push_back(ClassOf(sample.label()));
+    }
+    if (!vectors.empty()) {
+      auto rows = FeatureRows(vectors);
+      if (!rows.ok()) return ToGrpcStatus(rows.status());
+      state.features = std::move(rows).value();
+    }
+    std::copy(in.target_rng_state().begin(), in.target_rng_state().end(),
+              state.target_random.begin());
+    state.interactions = in.interactions();
+
+    auto settings = SettingsFromProto(in.config());
+    if (!settings.ok()) return ToGrpcStatus(settings.status());
+    const std::string config_blob = ProtoFromSettings(*settings).SerializeAsString();
+    auto created = registry_.Create(std::move(settings).value(), config_blob, NowUnixMs());
+    if (!created.ok()) return ToGrpcStatus(created.status());
+    id = created->session->id();
+    auto stats = created->session->ImportState(state, NowUnixMs());
+    if (!stats.ok()) {
+      (void)registry_.Delete(id);  // no half-imported session stays behind
+      return ToGrpcStatus(stats.status());
+    }
+    response->set_session_id(id);
+    response->set_session_token(created->token);
+    FillStats(*stats, response->mutable_stats());
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace relmap::service

@@ -38,6 +38,10 @@ class RelevanceService final : public v1::RelevanceService::Service {
                                 v1::ClassifyFeaturesResponse* response) override;
   grpc::Status AddSamples(grpc::ServerContext* context, const v1::AddSamplesRequest* request,
                           v1::AddSamplesResponse* response) override;
+  grpc::Status ExportSession(grpc::ServerContext* context, const v1::ExportSessionRequest* request,
+                             v1::ExportSessionResponse* response) override;
+  grpc::Status ImportSession(grpc::ServerContext* context, const v1::ImportSessionRequest* request,
+                             v1::ImportSessionResponse* response) override;
 
  private:
   // The session `id`, if the call's `authorization: Bearer <token>` matches it:

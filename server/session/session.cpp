@@ -253,6 +253,35 @@ Status Session::Replay(const std::vector<StoredSample>& samples) {
   return OkStatus();
 }
 
+SessionState Session::ExportState() const {
+  std::lock_guard lock(mutex_);
+  SessionState state;
+  state.features = model_.dataset().features();
+  state.labels.assign(model_.dataset().labels().begin(), model_.dataset().labels().end());
+  state.target_random = random_.state();
+  state.interactions = interactions_;
+  return state;
+}
+
+StatusOr<SessionStats> Session::ImportState(const SessionState& state, std::int64_t now_unix_ms) {
+  {
+    std::lock_guard lock(mutex_);
+    if (model_.dataset().size() != 0) {
+      return FailedPreconditionError("session " + id_ +
+                                     " has samples already; import into a new one");
+    }
+  }
+  StatusOr<SessionStats> stats = Stats();
+  if (state.features.rows() > 0) {
+    stats = AddSamples(state.features, state.labels, "import", now_unix_ms);
+    if (!stats.ok()) return stats.status();
+  }
+  std::lock_guard lock(mutex_);
+  random_ = cmm::Random::FromState(state.target_random);
+  interactions_ = state.interactions;
+  return StatsLocked();
+}
+
 SessionStats Session::Stats() const {
   std::lock_guard lock(mutex_);
   return StatsLocked();

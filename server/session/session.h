@@ -40,6 +40,14 @@ struct Outcome {
   std::optional<perception::ChangeEvidence> evidence;
 };
 
+// What ExportSession carries besides the settings.
+struct SessionState {
+  Eigen::MatrixXd features;  // one sample per row, in learning order
+  std::vector<int> labels;
+  cmm::Random::State target_random{};
+  std::uint64_t interactions = 0;
+};
+
 // A frame with its maps, as ComputeMaps returns it.
 struct MappedFrame {
   std::uint64_t frame_id = 0;
@@ -94,6 +102,12 @@ class Session {
                                     const std::string& request_id, std::int64_t now_unix_ms);
 
   SessionStats Stats() const;
+
+  // The dataset and target-draw state, for ExportSession.
+  SessionState ExportState() const;
+  // Learns an exported dataset (persisted like AddSamples) and takes over its
+  // target-draw state; for a new, empty session only (else FAILED_PRECONDITION).
+  StatusOr<SessionStats> ImportState(const SessionState& state, std::int64_t now_unix_ms);
 
  private:
   Session(std::string id, std::string token_hash, SessionSettings settings,

@@ -100,5 +100,49 @@ TEST(Persistence, AcknowledgedSamplesSurviveKillMinusNine) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(ExportImport, AnImportedSessionPredictsBitForBitLikeTheOriginal) {
+  testing::ServerProcess server;
+  auto stub = RelevanceService::NewStub(server.Channel());
+  grpc::ClientContext create_context;
+  v1::CreateSessionRequest create;
+  create.mutable_config()->set_feature_dimension(2);
+  create.mutable_config()->set_seed(5);
+  v1::CreateSessionResponse created;
+  ASSERT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
+  grpc::ClientContext add_context;
+  Authorise(add_context, created.session_token());
+  v1::AddSamplesResponse added;
+  ASSERT_TRUE(stub->AddSamples(&add_context, Samples(created.session_id(), "batch"), &added).ok());
+
+  grpc::ClientContext export_context;
+  Authorise(export_context, created.session_token());
+  v1::ExportSessionRequest export_request;
+  export_request.set_session_id(created.session_id());
+  v1::ExportSessionResponse exported;
+  ASSERT_TRUE(stub->ExportSession(&export_context, export_request, &exported).ok());
+  EXPECT_EQ(exported.state().samples_size(), 60);
+  EXPECT_EQ(exported.state().config().seed(), 5u);
+
+  grpc::ClientContext import_context;
+  v1::ImportSessionRequest import_request;
+  *import_request.mutable_state() = exported.state();
+  v1::ImportSessionResponse imported;
+  ASSERT_TRUE(stub->ImportSession(&import_context, import_request, &imported).ok());
+  EXPECT_NE(imported.session_id(), created.session_id());
+  EXPECT_EQ(imported.stats().moveable_samples(), added.stats().moveable_samples());
+  EXPECT_EQ(imported.stats().moveable_components(), added.stats().moveable_components());
+
+  const auto original = Classify(*stub, created.session_id(), created.session_token());
+  const auto copy = Classify(*stub, imported.session_id(), imported.session_token());
+  ASSERT_EQ(original.relevance_size(), copy.relevance_size());
+  for (int i = 0; i < copy.relevance_size(); ++i)
+    EXPECT_EQ(copy.relevance(i), original.relevance(i));
+
+  grpc::ClientContext bad_context;
+  import_request.mutable_state()->clear_target_rng_state();
+  EXPECT_EQ(stub->ImportSession(&bad_context, import_request, &imported).error_code(),
+            grpc::StatusCode::INVALID_ARGUMENT);
+}
+
 }  // namespace
 }  // namespace relmap
