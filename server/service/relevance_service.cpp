@@ -52,6 +52,26 @@ StatusOr<Eigen::MatrixXd> FeatureRows(
   return matrix;
 }
 
+struct LabelledRows {
+  Eigen::MatrixXd features;
+  std::vector<int> labels;  // -1 where the label is unset
+};
+
+// Labelled feature vectors of a request; ragged → INVALID_ARGUMENT.
+StatusOr<LabelledRows> LabelledRowsOf(
+    const google::protobuf::RepeatedPtrField<v1::LabelledFeature>& samples) {
+  google::protobuf::RepeatedPtrField<v1::FeatureVector> vectors;
+  LabelledRows rows;
+  for (const v1::LabelledFeature& sample : samples) {
+    *vectors.Add() = sample.feature();
+    rows.labels.push_back(ClassOf(sample.label()));
+  }
+  auto features = FeatureRows(vectors);
+  if (!features.ok()) return features.status();
+  rows.features = std::move(features).value();
+  return rows;
+}
+
 }  // namespace
 
 StatusOr<std::shared_ptr<session::Session>> RelevanceService::Authorised(
@@ -247,24 +267,15 @@ grpc::Status RelevanceService::AddSamples(grpc::ServerContext* context,
   return Logged("AddSamples", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    google::protobuf::RepeatedPtrField<v1::FeatureVector> vectors;
-    std::vector<int> labels;
-    for (const v1::LabelledFeature& sample : request->samples()) {
-      *vectors.Add() = sample.feature();
-      labels.push_back(ClassOf(sample.label()));
-    }
-    auto rows = FeatureRows(vectors);
+    auto rows = LabelledRowsOf(request->samples());
     if (!rows.ok()) return ToGrpcStatus(rows.status());
-    auto stats = (*session)->AddSamples(*rows, labels, request->request_id(), NowUnixMs());
+    auto stats =
+        (*session)->AddSamples(rows->features, rows->labels, request->request_id(), NowUnixMs());
     if (!stats.ok()) return ToGrpcStatus(stats.status());
     FillStats(*stats, response->mutable_stats());
     return grpc::Status::OK;
   });
 }
-
-}  // namespace relmap::service
-
-namespace relmap::service {
 
 grpc::Status RelevanceService::ExportSession(grpc::ServerContext* context,
                                              const v1::ExportSessionRequest* request,
@@ -302,15 +313,11 @@ grpc::Status RelevanceService::ImportSession(grpc::ServerContext* context,
                           "state.target_rng_state must hold the 4 words of the RNG");
     }
     session::SessionState state;
-    google::protobuf::RepeatedPtrField<v1::FeatureVector> vectors;
-    for (const v1::LabelledFeature& sample : in.samples()) {
-      *vectors.Add() = sample.feature();
-      state.labels.push_back(ClassOf(sample.label()));
-    }
-    if (!vectors.empty()) {
-      auto rows = FeatureRows(vectors);
+    if (in.samples_size() > 0) {
+      auto rows = LabelledRowsOf(in.samples());
       if (!rows.ok()) return ToGrpcStatus(rows.status());
-      state.features = std::move(rows).value();
+      state.features = std::move(rows->features);
+      state.labels = std::move(rows->labels);
     }
     std::copy(in.target_rng_state().begin(), in.target_rng_state().end(),
               state.target_random.begin());
