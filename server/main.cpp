@@ -18,6 +18,7 @@
 #include <string_view>
 #include <thread>
 
+#include "service/metrics_http.h"
 #include "service/relevance_service.h"
 #include "service/session_restore.h"
 #include "session/credentials.h"
@@ -31,7 +32,8 @@ constexpr std::string_view kUsage =
     "usage: relmap-server [--listen 127.0.0.1:50051] [--max-message-mb 64] [--max-sessions 1000]\n"
     "                     [--max-points 1228800] [--port-file PATH] [--data-dir DIR]\n"
     "                     [--admin-key-file PATH] [--tls-cert FILE --tls-key FILE]\n"
-    "                     [--max-threads 16]\n"
+    "                     [--max-threads 16] [--metrics-listen 127.0.0.1:9464]\n"
+    "                     [--metrics-port-file PATH]\n"
     "  --listen      address to serve on; port 0 picks a free port\n"
     "  --port-file   write the port actually bound there (for tests and scripts)\n"
     "  --data-dir    keep sessions and samples in DIR/relmap.sqlite (WAL) and restore them\n"
@@ -39,7 +41,8 @@ constexpr std::string_view kUsage =
     "  --admin-key-file  a file holding the admin key that create, list and delete need\n"
     "                (as 'x-relmap-admin-key' metadata); default $RELMAP_ADMIN_KEY, or none\n"
     "  --tls-cert, --tls-key  serve TLS with this PEM certificate chain and private key\n"
-    "  --max-threads  bound of the worker threads; calls beyond it get RESOURCE_EXHAUSTED\n";
+    "  --max-threads  bound of the worker threads; calls beyond it get RESOURCE_EXHAUSTED\n"
+    "  --metrics-listen  serve Prometheus metrics at http://ADDR/metrics (IPv4 host:port)\n";
 
 struct Options {
   std::string listen = "127.0.0.1:50051";
@@ -52,6 +55,8 @@ struct Options {
   std::string tls_cert;
   std::string tls_key;
   int max_threads = 16;
+  std::string metrics_listen;
+  std::string metrics_port_file;
 };
 
 // The whole of a small file (a certificate or key), or ExitWithError.
@@ -92,6 +97,10 @@ Options ParseArguments(int argc, char** argv) {
       options.tls_cert = value;
     } else if (flag == "--tls-key") {
       options.tls_key = value;
+    } else if (flag == "--metrics-listen") {
+      options.metrics_listen = value;
+    } else if (flag == "--metrics-port-file") {
+      options.metrics_port_file = value;
     } else if (flag == "--max-threads") {
       options.max_threads = static_cast<int>(ParseNumberOrExit("relmap-server", flag, value));
     } else if (flag == "--admin-key-file") {
@@ -190,6 +199,20 @@ int main(int argc, char** argv) {
   spdlog::info("relmap-server listening on {} (port {}, {}, at most {} worker threads)",
                options.listen, port, options.tls_cert.empty() ? "plaintext" : "TLS",
                options.max_threads);
+  std::unique_ptr<relmap::service::MetricsHttpServer> metrics;
+  if (!options.metrics_listen.empty()) {
+    auto started = relmap::service::MetricsHttpServer::Start(
+        options.metrics_listen, [&service] { return service.MetricsText(); });
+    if (!started.ok()) {
+      spdlog::error("{}", started.status().message());
+      return 1;
+    }
+    metrics = std::move(started).value();
+    spdlog::info("metrics at http://{}/metrics (port {})", options.metrics_listen, metrics->port());
+    if (!options.metrics_port_file.empty()) {
+      std::ofstream(options.metrics_port_file) << metrics->port() << '\n';
+    }
+  }
   if (!options.port_file.empty()) std::ofstream(options.port_file) << port << '\n';
 
   std::thread stopper([&] {

@@ -1,4 +1,4 @@
-// One spdlog line per RPC: method, session, status and latency.
+// One spdlog line and one metrics record per RPC: method, session, status, latency.
 #pragma once
 
 #include <grpcpp/support/status.h>
@@ -8,16 +8,20 @@
 #include <string>
 #include <string_view>
 
+#include "service/metrics.h"
+
 namespace relmap::service {
 
 // Runs `body` (returning grpc::Status) and logs how it went. `session_id` is read
 // after the body ran, so CreateSession can log the id it made.
 template <typename Body>
-grpc::Status Logged(std::string_view method, const std::string& session_id, Body&& body) {
+grpc::Status Logged(Metrics& metrics, std::string_view method, const std::string& session_id,
+                    Body&& body) {
   const auto start = std::chrono::steady_clock::now();
   const grpc::Status status = body();
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  metrics.Record(method, static_cast<int>(status.error_code()), ms);
   if (status.ok()) {
     spdlog::info("rpc={} session={} status=OK latency_ms={:.2f}", method,
                  session_id.empty() ? "-" : session_id, ms);

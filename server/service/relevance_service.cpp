@@ -74,6 +74,16 @@ StatusOr<LabelledRows> LabelledRowsOf(
 
 }  // namespace
 
+std::string RelevanceService::MetricsText() const {
+  std::uint64_t samples = 0;
+  const auto sessions = registry_.List();
+  for (const auto& session : sessions) {
+    const session::SessionStats stats = session->Stats();
+    samples += stats.samples[0] + stats.samples[1];
+  }
+  return metrics_.PrometheusText(sessions.size(), samples);
+}
+
 StatusOr<std::shared_ptr<session::Session>> RelevanceService::Authorised(
     const grpc::ServerContext& context, const std::string& id) const {
   if (id.empty()) return InvalidArgumentError("session_id is required");
@@ -115,7 +125,7 @@ grpc::Status RelevanceService::CreateSession(grpc::ServerContext* context,
                                              const v1::CreateSessionRequest* request,
                                              v1::CreateSessionResponse* response) {
   std::string id;
-  return Logged("CreateSession", id, [&] {
+  return Logged(metrics_, "CreateSession", id, [&] {
     if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
     auto settings = SettingsFromProto(request->config());
     if (!settings.ok()) return ToGrpcStatus(settings.status());
@@ -134,7 +144,7 @@ grpc::Status RelevanceService::CreateSession(grpc::ServerContext* context,
 grpc::Status RelevanceService::GetSession(grpc::ServerContext* context,
                                           const v1::GetSessionRequest* request,
                                           v1::GetSessionResponse* response) {
-  return Logged("GetSession", request->session_id(), [&] {
+  return Logged(metrics_, "GetSession", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
     response->set_session_id((*session)->id());
@@ -147,7 +157,7 @@ grpc::Status RelevanceService::GetSession(grpc::ServerContext* context,
 grpc::Status RelevanceService::ListSessions(grpc::ServerContext* context,
                                             const v1::ListSessionsRequest*,
                                             v1::ListSessionsResponse* response) {
-  return Logged("ListSessions", "", [&] {
+  return Logged(metrics_, "ListSessions", "", [&] {
     if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
     for (const auto& session : registry_.List()) {
       v1::GetSessionResponse* entry = response->add_sessions();
@@ -162,7 +172,7 @@ grpc::Status RelevanceService::ListSessions(grpc::ServerContext* context,
 grpc::Status RelevanceService::DeleteSession(grpc::ServerContext* context,
                                              const v1::DeleteSessionRequest* request,
                                              v1::DeleteSessionResponse*) {
-  return Logged("DeleteSession", request->session_id(), [&] {
+  return Logged(metrics_, "DeleteSession", request->session_id(), [&] {
     // With an admin key the administrator deletes any session; without one, the
     // session's own token is needed.
     if (!admin_key_hash_.empty()) {
@@ -177,7 +187,7 @@ grpc::Status RelevanceService::DeleteSession(grpc::ServerContext* context,
 grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
                                            const v1::ComputeMapsRequest* request,
                                            v1::ComputeMapsResponse* response) {
-  return Logged("ComputeMaps", request->session_id(), [&] {
+  return Logged(metrics_, "ComputeMaps", request->session_id(), [&] {
     const auto start = std::chrono::steady_clock::now();
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
@@ -221,7 +231,7 @@ grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
 grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
                                            const v1::PostOutcomeRequest* request,
                                            v1::PostOutcomeResponse* response) {
-  return Logged("PostOutcome", request->session_id(), [&] {
+  return Logged(metrics_, "PostOutcome", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
     StatusOr<session::Outcome> outcome = InvalidArgumentError(
@@ -247,7 +257,7 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
 grpc::Status RelevanceService::ClassifyFeatures(grpc::ServerContext* context,
                                                 const v1::ClassifyFeaturesRequest* request,
                                                 v1::ClassifyFeaturesResponse* response) {
-  return Logged("ClassifyFeatures", request->session_id(), [&] {
+  return Logged(metrics_, "ClassifyFeatures", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
     auto rows = FeatureRows(request->features());
@@ -264,7 +274,7 @@ grpc::Status RelevanceService::ClassifyFeatures(grpc::ServerContext* context,
 grpc::Status RelevanceService::AddSamples(grpc::ServerContext* context,
                                           const v1::AddSamplesRequest* request,
                                           v1::AddSamplesResponse* response) {
-  return Logged("AddSamples", request->session_id(), [&] {
+  return Logged(metrics_, "AddSamples", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
     auto rows = LabelledRowsOf(request->samples());
@@ -280,7 +290,7 @@ grpc::Status RelevanceService::AddSamples(grpc::ServerContext* context,
 grpc::Status RelevanceService::ExportSession(grpc::ServerContext* context,
                                              const v1::ExportSessionRequest* request,
                                              v1::ExportSessionResponse* response) {
-  return Logged("ExportSession", request->session_id(), [&] {
+  return Logged(metrics_, "ExportSession", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
     const session::SessionState state = (*session)->ExportState();
@@ -305,7 +315,7 @@ grpc::Status RelevanceService::ImportSession(grpc::ServerContext* context,
                                              const v1::ImportSessionRequest* request,
                                              v1::ImportSessionResponse* response) {
   std::string id;
-  return Logged("ImportSession", id, [&] {
+  return Logged(metrics_, "ImportSession", id, [&] {
     if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
     const v1::SessionState& in = request->state();
     if (in.target_rng_state_size() != 4) {

@@ -9,6 +9,7 @@
 
 #include "perception/perception_config.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
+#include "service/metrics.h"
 #include "session/session_registry.h"
 
 namespace relmap::service {
@@ -38,6 +39,9 @@ class RelevanceService final : public v1::RelevanceService::Service {
                                 v1::ClassifyFeaturesResponse* response) override;
   grpc::Status AddSamples(grpc::ServerContext* context, const v1::AddSamplesRequest* request,
                           v1::AddSamplesResponse* response) override;
+  // Per-RPC counters and latencies, sessions and samples, in Prometheus's text format.
+  std::string MetricsText() const;
+
   grpc::Status ExportSession(grpc::ServerContext* context, const v1::ExportSessionRequest* request,
                              v1::ExportSessionResponse* response) override;
   grpc::Status ImportSession(grpc::ServerContext* context, const v1::ImportSessionRequest* request,
@@ -57,6 +61,7 @@ class RelevanceService final : public v1::RelevanceService::Service {
   session::SessionRegistry& registry_;
   const perception::DecodeLimits limits_;
   const std::string admin_key_hash_;
+  Metrics metrics_;
 };
 
 }  // namespace relmap::service

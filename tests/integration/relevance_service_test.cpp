@@ -1,7 +1,11 @@
 // The relevance server end to end: a real server process on a loopback port,
 // talked to through the generated API.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -420,6 +424,55 @@ TEST(RelevanceServerTls, ServesTlsWithTheGivenCertificate) {
   EXPECT_FALSE(plain->CreateSession(&plain_context, {}, &created).ok());
   std::remove(cert.c_str());
   std::remove(key.c_str());
+}
+
+// GET of `path` on 127.0.0.1:`port`, the whole HTTP response.
+std::string HttpGet(int port, const std::string& path) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) return {};
+  const std::string request = "GET " + path + " HTTP/1.0\r\n\r\n";
+  (void)::send(fd, request.data(), request.size(), 0);
+  std::string response;
+  char buffer[4096];
+  for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;)
+    response.append(buffer, static_cast<std::size_t>(n));
+  ::close(fd);
+  return response;
+}
+
+TEST(RelevanceServerMetrics, PrometheusEndpointCountsCallsAndSessions) {
+  const std::string port_file = ::testing::TempDir() + "/relmap_metrics_port";
+  std::remove(port_file.c_str());
+  testing::ServerProcess server(
+      {"--metrics-listen", "127.0.0.1:0", "--metrics-port-file", port_file});
+  auto stub = RelevanceService::NewStub(server.Channel());
+  grpc::ClientContext create_context;
+  v1::CreateSessionResponse created;
+  ASSERT_TRUE(stub->CreateSession(&create_context, {}, &created).ok());
+  grpc::ClientContext get_context;
+  v1::GetSessionRequest get;
+  get.set_session_id("nope");
+  v1::GetSessionResponse response;
+  EXPECT_FALSE(stub->GetSession(&get_context, get, &response).ok());
+
+  int port = 0;
+  std::ifstream(port_file) >> port;
+  ASSERT_GT(port, 0);
+  const std::string metrics = HttpGet(port, "/metrics");
+  EXPECT_NE(metrics.find("200 OK"), std::string::npos);
+  EXPECT_NE(metrics.find("relmap_rpc_total{method=\"CreateSession\",code=\"OK\"} 1"),
+            std::string::npos);
+  EXPECT_NE(metrics.find("relmap_rpc_total{method=\"GetSession\",code=\"UNAUTHENTICATED\"} 1"),
+            std::string::npos);
+  EXPECT_NE(metrics.find("relmap_rpc_latency_ms_count{method=\"CreateSession\"} 1"),
+            std::string::npos);
+  EXPECT_NE(metrics.find("relmap_sessions 1"), std::string::npos);
+  EXPECT_NE(HttpGet(port, "/other").find("404"), std::string::npos);
+  std::remove(port_file.c_str());
 }
 
 TEST(RelevanceServerLifecycle, SigtermStopsTheServerCleanly) {
