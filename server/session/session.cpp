@@ -115,7 +115,7 @@ StatusOr<Outcome> Session::LearnOutcomeLocked(const perception::Frame& frame,
   }
   last_used_unix_ms_ = now_unix_ms;
   Outcome outcome{StatsLocked(), label, std::move(evidence)};
-  if (!request_id.empty()) answered_[request_id] = outcome;
+  if (!request_id.empty()) RememberLocked(request_id, outcome);
   return outcome;
 }
 
@@ -218,7 +218,7 @@ StatusOr<SessionStats> Session::AddSamples(const Eigen::MatrixXd& features,
   }
   last_used_unix_ms_ = now_unix_ms;
   Outcome outcome{StatsLocked(), -1, std::nullopt};
-  if (!request_id.empty()) answered_[request_id] = outcome;
+  if (!request_id.empty()) RememberLocked(request_id, outcome);
   return outcome.stats;
 }
 
@@ -251,6 +251,14 @@ Status Session::Replay(const std::vector<StoredSample>& samples) {
     }
   }
   return OkStatus();
+}
+
+void Session::RememberLocked(const std::string& request_id, const Outcome& outcome) {
+  if (answered_.emplace(request_id, outcome).second) answered_order_.push_back(request_id);
+  while (answered_order_.size() > kRememberedAnswers) {
+    answered_.erase(answered_order_.front());
+    answered_order_.pop_front();
+  }
 }
 
 SessionState Session::ExportState() const {

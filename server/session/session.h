@@ -40,6 +40,9 @@ struct Outcome {
   std::optional<perception::ChangeEvidence> evidence;
 };
 
+// Answers a session keeps for retried requests.
+inline constexpr std::size_t kRememberedAnswers = 10000;
+
 // What ExportSession carries besides the settings.
 struct SessionState {
   Eigen::MatrixXd features;  // one sample per row, in learning order
@@ -140,7 +143,13 @@ class Session {
   std::uint64_t frames_ = 0;
   std::uint64_t interactions_ = 0;
   std::deque<MappedFrame> frames_cache_;
+  // Remembers the answer under `request_id`, forgetting the oldest beyond
+  // kRememberedAnswers (with a store, older retries are still not learned twice:
+  // the store deduplicates them).
+  void RememberLocked(const std::string& request_id, const Outcome& outcome);
+
   std::map<std::string, Outcome> answered_;  // request id → the answer given
+  std::deque<std::string> answered_order_;   // oldest first
   std::int64_t created_unix_ms_;
   std::int64_t last_used_unix_ms_;
 };
