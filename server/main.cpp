@@ -42,7 +42,9 @@ constexpr std::string_view kUsage =
     "                (as 'x-relmap-admin-key' metadata); default $RELMAP_ADMIN_KEY, or none\n"
     "  --tls-cert, --tls-key  serve TLS with this PEM certificate chain and private key\n"
     "  --max-threads  bound of the worker threads; calls beyond it get RESOURCE_EXHAUSTED\n"
-    "  --metrics-listen  serve Prometheus metrics at http://ADDR/metrics (IPv4 host:port)\n";
+    "  --metrics-listen  serve Prometheus metrics at http://ADDR/metrics (IPv4 host:port)\n"
+    "  --snapshot-every  with --data-dir: store a model snapshot every N samples of a\n"
+    "                session, so a restart relearns at most N (default 500; 0 never)\n";
 
 struct Options {
   std::string listen = "127.0.0.1:50051";
@@ -55,6 +57,7 @@ struct Options {
   std::string tls_cert;
   std::string tls_key;
   int max_threads = 16;
+  std::size_t snapshot_every = 500;
   std::string metrics_listen;
   std::string metrics_port_file;
 };
@@ -97,6 +100,9 @@ Options ParseArguments(int argc, char** argv) {
       options.tls_cert = value;
     } else if (flag == "--tls-key") {
       options.tls_key = value;
+    } else if (flag == "--snapshot-every") {
+      options.snapshot_every =
+          static_cast<std::size_t>(ParseNumberOrExit("relmap-server", flag, value));
     } else if (flag == "--metrics-listen") {
       options.metrics_listen = value;
     } else if (flag == "--metrics-port-file") {
@@ -156,6 +162,7 @@ int main(int argc, char** argv) {
     spdlog::warn("no --data-dir: sessions live in memory only and are lost at exit");
   }
   relmap::session::SessionRegistry registry(options.max_sessions, store.get());
+  registry.set_snapshot_every(options.snapshot_every);
   if (store) {
     if (const relmap::Status restored = relmap::service::RestoreSessions(*store, registry);
         !restored.ok()) {

@@ -29,11 +29,22 @@ Status RestoreSessions(session::SessionStore& store, session::SessionRegistry& r
     auto restored = session::Session::Create(record->id, record->token_hash,
                                              std::move(settings).value(), created_ms, &store);
     if (!restored.ok()) return restored.status();
+    // The latest snapshot, if any, then the samples after it.
+    auto snapshot = store.LoadLatestSnapshot(summary.id);
+    if (!snapshot.ok()) return snapshot.status();
+    std::int64_t from_snapshot = 0;
+    if (snapshot->has_value()) {
+      if (Status status = (*restored)->RestoreModel((*snapshot)->snapshot); !status.ok()) {
+        return status;
+      }
+      from_snapshot = (*snapshot)->sample_count;
+    }
     auto samples = store.LoadSamples(summary.id);
     if (!samples.ok()) return samples.status();
     if (Status status = (*restored)->Replay(*samples); !status.ok()) return status;
     if (Status status = registry.Adopt(std::move(restored).value()); !status.ok()) return status;
-    spdlog::info("restored session={} samples={} in {:.1f} ms", summary.id, samples->size(),
+    spdlog::info("restored session={} samples={} (snapshot of {}) in {:.1f} ms", summary.id,
+                 samples->size(), from_snapshot,
                  std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                      .count());
   }

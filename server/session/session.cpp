@@ -237,12 +237,36 @@ Status Session::PersistAndLearn(const std::string& request_id, const Eigen::Vect
     }
   }
   auto added = model_.Add(x, label);
-  return added.ok() ? OkStatus() : added.status();
+  if (!added.ok()) return added.status();
+  const auto learned = static_cast<std::size_t>(model_.dataset().size());
+  if (store_ != nullptr && snapshot_every_ > 0 && learned % snapshot_every_ == 0) {
+    // A failed snapshot loses nothing (the samples are the record): log-worthy,
+    // not an error of this call.
+    (void)store_->SaveSnapshot(id_, model_.Snapshot(), static_cast<std::int64_t>(learned));
+  }
+  return OkStatus();
+}
+
+void Session::set_snapshot_every(std::size_t samples) {
+  std::lock_guard lock(mutex_);
+  snapshot_every_ = samples;
+}
+
+Status Session::RestoreModel(const cmm::CmmSnapshot& snapshot) {
+  std::lock_guard lock(mutex_);
+  if (model_.dataset().size() != 0) {
+    return FailedPreconditionError("session " + id_ + " has learned samples already");
+  }
+  auto restored = cmm::CollaborativeMixtureModels::Restore(snapshot);
+  if (!restored.ok()) return restored.status();
+  model_ = std::move(restored).value();
+  return OkStatus();
 }
 
 Status Session::Replay(const std::vector<StoredSample>& samples) {
   std::lock_guard lock(mutex_);
   for (const StoredSample& sample : samples) {
+    if (sample.sequence < model_.dataset().size()) continue;  // in the restored snapshot
     const Eigen::Map<const Eigen::VectorXd> x(sample.features.data(),
                                               static_cast<Eigen::Index>(sample.features.size()));
     if (auto added = model_.Add(x, sample.label); !added.ok()) {

@@ -69,8 +69,14 @@ class Session {
                                                    SessionStore* store = nullptr);
 
   // Relearns stored samples in sequence order (after a restart): the same
-  // samples in the same order rebuild the same model, bit for bit.
+  // samples in the same order rebuild the same model, bit for bit. Samples the
+  // model has already learned (from a snapshot) are skipped.
   Status Replay(const std::vector<StoredSample>& samples);
+  // Starts an empty session from a stored model snapshot (bit for bit).
+  Status RestoreModel(const cmm::CmmSnapshot& snapshot);
+  // With a store: save a model snapshot every `samples` learned samples, so that a
+  // restart replays at most that many (0: never).
+  void set_snapshot_every(std::size_t samples);
 
   const std::string& id() const { return id_; }
   const std::string& token_hash() const { return token_hash_; }
@@ -142,6 +148,7 @@ class Session {
   std::uint64_t next_frame_id_ = 1;
   std::uint64_t frames_ = 0;
   std::uint64_t interactions_ = 0;
+  std::size_t snapshot_every_ = 0;
   std::deque<MappedFrame> frames_cache_;
   // Remembers the answer under `request_id`, forgetting the oldest beyond
   // kRememberedAnswers (with a store, older retries are still not learned twice:

@@ -17,6 +17,7 @@ StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings setti
       Session::Create(RandomHex(16), Sha256Hex(token), std::move(settings), now_unix_ms, store_);
   if (!session.ok()) return session.status();
   std::shared_ptr<Session> shared = std::move(session).value();
+  shared->set_snapshot_every(snapshot_every_);
   std::unique_lock lock(mutex_);
   if (sessions_.size() >= max_sessions_) {
     return ResourceExhaustedError("the server holds its maximum of " +
@@ -54,6 +55,7 @@ std::vector<std::shared_ptr<Session>> SessionRegistry::List() const {
 }
 
 Status SessionRegistry::Adopt(std::shared_ptr<Session> session) {
+  session->set_snapshot_every(snapshot_every_);
   std::unique_lock lock(mutex_);
   if (!sessions_.emplace(session->id(), session).second) {
     return Status(StatusCode::kAlreadyExists, "session '" + session->id() + "' exists twice");

@@ -31,6 +31,8 @@ class SessionRegistry {
   // Adds a session rebuilt from the store at start-up.
   Status Adopt(std::shared_ptr<Session> session);
   SessionStore* store() const { return store_; }
+  // Snapshot policy given to every session created or adopted from now on.
+  void set_snapshot_every(std::size_t samples) { snapshot_every_ = samples; }
   // NOT_FOUND for an unknown id.
   StatusOr<std::shared_ptr<Session>> Find(const std::string& id) const;
   // Every session, ordered by id.
@@ -41,6 +43,7 @@ class SessionRegistry {
  private:
   const std::size_t max_sessions_;
   SessionStore* const store_;
+  std::size_t snapshot_every_ = 0;
   mutable std::shared_mutex mutex_;
   std::unordered_map<std::string, std::shared_ptr<Session>> sessions_;
 };

@@ -7,6 +7,7 @@
 
 #include "integration/server_process.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
+#include "session/sqlite_session_store.h"
 
 namespace relmap {
 namespace {
@@ -97,6 +98,45 @@ TEST(Persistence, AcknowledgedSamplesSurviveKillMinusNine) {
   v1::AddSamplesResponse retried;
   ASSERT_TRUE(stub->AddSamples(&retry_context, Samples(id, "batch-1"), &retried).ok());
   EXPECT_EQ(retried.stats().moveable_samples() + retried.stats().non_moveable_samples(), 60u);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Persistence, RestartFromASnapshotPredictsLikeAFullReplay) {
+  const std::string dir = ::testing::TempDir() + "/relmap_snapshots_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  std::string id, token;
+  v1::ClassifyFeaturesResponse before;
+  {
+    testing::ServerProcess server({"--data-dir", dir, "--snapshot-every", "25"});
+    auto stub = RelevanceService::NewStub(server.Channel());
+    grpc::ClientContext create_context;
+    v1::CreateSessionRequest create;
+    create.mutable_config()->set_feature_dimension(2);
+    v1::CreateSessionResponse created;
+    ASSERT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
+    id = created.session_id();
+    token = created.session_token();
+    grpc::ClientContext add_context;
+    Authorise(add_context, token);
+    v1::AddSamplesResponse added;
+    ASSERT_TRUE(stub->AddSamples(&add_context, Samples(id, "batch"), &added).ok());
+    before = Classify(*stub, id, token);
+    server.Kill();
+  }
+  {
+    // Snapshots after 25 and 50 of the 60 samples; the latest is kept.
+    auto store = session::SqliteSessionStore::Open(dir + "/relmap.sqlite");
+    ASSERT_TRUE(store.ok()) << store.status().message();
+    auto snapshot = (*store)->LoadLatestSnapshot(id);
+    ASSERT_TRUE(snapshot.ok() && snapshot->has_value());
+    EXPECT_EQ((*snapshot)->sample_count, 50);
+  }
+  testing::ServerProcess restarted({"--data-dir", dir});
+  auto stub = RelevanceService::NewStub(restarted.Channel());
+  const v1::ClassifyFeaturesResponse after = Classify(*stub, id, token);
+  ASSERT_EQ(after.relevance_size(), before.relevance_size());
+  for (int i = 0; i < after.relevance_size(); ++i)
+    EXPECT_EQ(after.relevance(i), before.relevance(i));
   std::filesystem::remove_all(dir);
 }
 
