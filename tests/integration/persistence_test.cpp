@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "integration/server_process.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
@@ -48,31 +50,43 @@ v1::ClassifyFeaturesResponse Classify(RelevanceService::Stub& stub, const std::s
   return response;
 }
 
+// A 2-d session with the 60 samples of Samples(), on a server started with
+// `arguments`; its predictions; then the server is killed with SIGKILL.
+struct KilledSession {
+  std::string id;
+  std::string token;
+  v1::ClassifyFeaturesResponse predictions;
+};
+
+KilledSession TrainThenKill(std::vector<std::string> arguments) {
+  testing::ServerProcess server(std::move(arguments));
+  auto stub = RelevanceService::NewStub(server.Channel());
+  grpc::ClientContext create_context;
+  v1::CreateSessionRequest create;
+  create.mutable_config()->set_feature_dimension(2);
+  create.mutable_config()->set_seed(17);
+  v1::CreateSessionResponse created;
+  EXPECT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
+  grpc::ClientContext add_context;
+  Authorise(add_context, created.session_token());
+  v1::AddSamplesResponse added;
+  EXPECT_TRUE(
+      stub->AddSamples(&add_context, Samples(created.session_id(), "batch-1"), &added).ok());
+  EXPECT_EQ(added.stats().moveable_samples() + added.stats().non_moveable_samples(), 60u);
+  KilledSession killed{created.session_id(), created.session_token(),
+                       Classify(*stub, created.session_id(), created.session_token())};
+  server.Kill();
+  return killed;
+}
+
 TEST(Persistence, AcknowledgedSamplesSurviveKillMinusNine) {
   const std::string dir =
       ::testing::TempDir() + "/relmap_persistence_" + std::to_string(::getpid());
   std::filesystem::remove_all(dir);
-  std::string id, token;
-  v1::ClassifyFeaturesResponse before;
-  {
-    testing::ServerProcess server({"--data-dir", dir});
-    auto stub = RelevanceService::NewStub(server.Channel());
-    grpc::ClientContext create_context;
-    v1::CreateSessionRequest create;
-    create.mutable_config()->set_feature_dimension(2);
-    create.mutable_config()->set_seed(17);
-    v1::CreateSessionResponse created;
-    ASSERT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
-    id = created.session_id();
-    token = created.session_token();
-    grpc::ClientContext add_context;
-    Authorise(add_context, token);
-    v1::AddSamplesResponse added;
-    ASSERT_TRUE(stub->AddSamples(&add_context, Samples(id, "batch-1"), &added).ok());
-    ASSERT_EQ(added.stats().moveable_samples() + added.stats().non_moveable_samples(), 60u);
-    before = Classify(*stub, id, token);
-    server.Kill();
-  }
+  const KilledSession killed = TrainThenKill({"--data-dir", dir});
+  const std::string& id = killed.id;
+  const std::string& token = killed.token;
+  const v1::ClassifyFeaturesResponse& before = killed.predictions;
 
   testing::ServerProcess restarted({"--data-dir", dir});
   auto stub = RelevanceService::NewStub(restarted.Channel());
@@ -104,25 +118,10 @@ TEST(Persistence, AcknowledgedSamplesSurviveKillMinusNine) {
 TEST(Persistence, RestartFromASnapshotPredictsLikeAFullReplay) {
   const std::string dir = ::testing::TempDir() + "/relmap_snapshots_" + std::to_string(::getpid());
   std::filesystem::remove_all(dir);
-  std::string id, token;
-  v1::ClassifyFeaturesResponse before;
-  {
-    testing::ServerProcess server({"--data-dir", dir, "--snapshot-every", "25"});
-    auto stub = RelevanceService::NewStub(server.Channel());
-    grpc::ClientContext create_context;
-    v1::CreateSessionRequest create;
-    create.mutable_config()->set_feature_dimension(2);
-    v1::CreateSessionResponse created;
-    ASSERT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
-    id = created.session_id();
-    token = created.session_token();
-    grpc::ClientContext add_context;
-    Authorise(add_context, token);
-    v1::AddSamplesResponse added;
-    ASSERT_TRUE(stub->AddSamples(&add_context, Samples(id, "batch"), &added).ok());
-    before = Classify(*stub, id, token);
-    server.Kill();
-  }
+  const KilledSession killed = TrainThenKill({"--data-dir", dir, "--snapshot-every", "25"});
+  const std::string& id = killed.id;
+  const std::string& token = killed.token;
+  const v1::ClassifyFeaturesResponse& before = killed.predictions;
   {
     // Snapshots after 25 and 50 of the 60 samples; the latest is kept.
     auto store = session::SqliteSessionStore::Open(dir + "/relmap.sqlite");
