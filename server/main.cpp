@@ -8,12 +8,15 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -44,7 +47,9 @@ constexpr std::string_view kUsage =
     "  --max-threads  bound of the worker threads; calls beyond it get RESOURCE_EXHAUSTED\n"
     "  --metrics-listen  serve Prometheus metrics at http://ADDR/metrics (IPv4 host:port)\n"
     "  --snapshot-every  with --data-dir: store a model snapshot every N samples of a\n"
-    "                session, so a restart relearns at most N (default 500; 0 never)\n";
+    "                session, so a restart relearns at most N (default 500; 0 never)\n"
+    "  --evict-idle-seconds  with --data-dir: drop sessions unused this long from memory;\n"
+    "                they are loaded again on their next call (default 1800; 0 never)\n";
 
 struct Options {
   std::string listen = "127.0.0.1:50051";
@@ -58,6 +63,7 @@ struct Options {
   std::string tls_key;
   int max_threads = 16;
   std::size_t snapshot_every = 500;
+  long long evict_idle_seconds = 1800;
   std::string metrics_listen;
   std::string metrics_port_file;
 };
@@ -100,6 +106,9 @@ Options ParseArguments(int argc, char** argv) {
       options.tls_cert = value;
     } else if (flag == "--tls-key") {
       options.tls_key = value;
+    } else if (flag == "--evict-idle-seconds") {
+      options.evict_idle_seconds =
+          static_cast<long long>(ParseNumberOrExit("relmap-server", flag, value));
     } else if (flag == "--snapshot-every") {
       options.snapshot_every =
           static_cast<std::size_t>(ParseNumberOrExit("relmap-server", flag, value));
@@ -164,11 +173,9 @@ int main(int argc, char** argv) {
   relmap::session::SessionRegistry registry(options.max_sessions, store.get());
   registry.set_snapshot_every(options.snapshot_every);
   if (store) {
-    if (const relmap::Status restored = relmap::service::RestoreSessions(*store, registry);
-        !restored.ok()) {
-      spdlog::error("cannot restore the stored sessions: {}", restored.message());
-      return 1;
-    }
+    // Stored sessions come back into memory on their first call.
+    registry.set_loader(
+        [&store](const std::string& id) { return relmap::service::LoadStoredSession(*store, id); });
   }
   relmap::perception::DecodeLimits limits;
   limits.max_points = options.max_points;
@@ -222,6 +229,26 @@ int main(int argc, char** argv) {
   }
   if (!options.port_file.empty()) std::ofstream(options.port_file) << port << '\n';
 
+  // Idle sessions leave memory (the store keeps them) so that memory follows the
+  // active sessions, not every session ever created.
+  std::mutex evictor_mutex;
+  std::condition_variable evictor_wakeup;
+  bool stopping = false;
+  std::thread evictor([&] {
+    if (!store || options.evict_idle_seconds <= 0) return;
+    const auto period =
+        std::chrono::seconds(std::clamp<long long>(options.evict_idle_seconds / 2, 1, 30));
+    std::unique_lock lock(evictor_mutex);
+    while (!evictor_wakeup.wait_for(lock, period, [&] { return stopping; })) {
+      const auto now = std::chrono::duration_cast<std::chrono::milliseconds>(
+                           std::chrono::system_clock::now().time_since_epoch())
+                           .count();
+      for (const std::string& id : registry.EvictIdle(now - options.evict_idle_seconds * 1000)) {
+        spdlog::info("evicted session={} (idle for {} s)", id, options.evict_idle_seconds);
+      }
+    }
+  });
+
   std::thread stopper([&] {
     int signal = 0;
     sigwait(&stop_signals, &signal);
@@ -231,6 +258,12 @@ int main(int argc, char** argv) {
   });
   server->Wait();
   stopper.join();
+  {
+    std::lock_guard lock(evictor_mutex);
+    stopping = true;
+  }
+  evictor_wakeup.notify_all();
+  evictor.join();
   spdlog::info("relmap-server stopped");
   return 0;
 }

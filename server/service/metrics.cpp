@@ -69,9 +69,11 @@ std::string Metrics::PrometheusText(std::uint64_t sessions, std::uint64_t sample
     out += fmt::format("relmap_rpc_latency_ms_sum{{method=\"{}\"}} {}\n", method, h.sum_ms);
     out += fmt::format("relmap_rpc_latency_ms_count{{method=\"{}\"}} {}\n", method, h.count);
   }
-  out += "# HELP relmap_sessions Sessions held by this server.\n# TYPE relmap_sessions gauge\n";
+  out += "# HELP relmap_sessions Sessions in this server's memory.\n# TYPE relmap_sessions gauge\n";
   out += fmt::format("relmap_sessions {}\n", sessions);
-  out += "# HELP relmap_samples Labelled samples over all sessions.\n# TYPE relmap_samples gauge\n";
+  out +=
+      "# HELP relmap_samples Labelled samples of the sessions in memory.\n# TYPE relmap_samples "
+      "gauge\n";
   out += fmt::format("relmap_samples {}\n", samples);
   return out;
 }

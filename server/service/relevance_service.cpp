@@ -76,7 +76,7 @@ StatusOr<LabelledRows> LabelledRowsOf(
 
 std::string RelevanceService::MetricsText() const {
   std::uint64_t samples = 0;
-  const auto sessions = registry_.List();
+  const auto sessions = registry_.Resident();  // a scrape must not load evicted sessions
   for (const auto& session : sessions) {
     const session::SessionStats stats = session->Stats();
     samples += stats.samples[0] + stats.samples[1];

@@ -1,16 +1,20 @@
-// Start-up: every session of the store back in the registry, its model rebuilt
-// by relearning its samples in order (deterministic: the same model, bit for bit).
+// A stored session back in memory: the settings from its stored SessionConfig,
+// the model from its latest snapshot plus the samples after it (the same model,
+// bit for bit, as before the restart or eviction).
 #pragma once
 
+#include <memory>
+#include <string>
+
 #include "common/status.h"
-#include "session/session_registry.h"
+#include "session/session.h"
 #include "session/session_store.h"
 
 namespace relmap::service {
 
-// Restores every stored session into `registry`. A session whose record or
-// samples do not decode → DATA_LOSS naming it (the server refuses to start
-// rather than serve a session without its acknowledged samples).
-Status RestoreSessions(session::SessionStore& store, session::SessionRegistry& registry);
+// NOT_FOUND for an id the store does not hold; DATA_LOSS when its record,
+// snapshot or samples do not decode.
+StatusOr<std::shared_ptr<session::Session>> LoadStoredSession(session::SessionStore& store,
+                                                              const std::string& id);
 
 }  // namespace relmap::service

@@ -37,37 +37,73 @@ StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings setti
   return Created{std::move(shared), std::move(token)};
 }
 
-StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) const {
-  std::shared_lock lock(mutex_);
-  const auto it = sessions_.find(id);
-  if (it == sessions_.end()) return NotFoundError("no session '" + id + "'");
-  return it->second;
+StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) {
+  const auto resident = [&]() -> std::shared_ptr<Session> {
+    std::shared_lock lock(mutex_);
+    const auto it = sessions_.find(id);
+    return it == sessions_.end() ? nullptr : it->second;
+  };
+  if (auto session = resident()) return session;
+  if (!loader_) return NotFoundError("no session '" + id + "'");
+  std::lock_guard load(load_mutex_);
+  if (auto session = resident()) return session;  // loaded by another call meanwhile
+  auto loaded = loader_(id);
+  if (!loaded.ok()) {
+    if (loaded.status().code() == StatusCode::kNotFound)
+      return NotFoundError("no session '" + id + "'");
+    return loaded.status();
+  }
+  (*loaded)->set_snapshot_every(snapshot_every_);
+  std::unique_lock lock(mutex_);
+  sessions_.emplace(id, *loaded);
+  return loaded;
 }
 
-std::vector<std::shared_ptr<Session>> SessionRegistry::List() const {
+std::vector<std::shared_ptr<Session>> SessionRegistry::Resident() const {
   std::vector<std::shared_ptr<Session>> out;
-  {
-    std::shared_lock lock(mutex_);
-    for (const auto& [id, session] : sessions_) out.push_back(session);
+  std::shared_lock lock(mutex_);
+  for (const auto& [id, session] : sessions_) out.push_back(session);
+  return out;
+}
+
+std::vector<std::shared_ptr<Session>> SessionRegistry::List() {
+  std::vector<std::shared_ptr<Session>> out;
+  if (store_ != nullptr && loader_) {
+    if (auto stored = store_->ListSessions(); stored.ok()) {
+      for (const SessionSummary& summary : *stored) {
+        if (auto session = Find(summary.id); session.ok()) out.push_back(*session);
+      }
+      return out;
+    }
   }
+  out = Resident();
   std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a->id() < b->id(); });
   return out;
 }
 
-Status SessionRegistry::Adopt(std::shared_ptr<Session> session) {
-  session->set_snapshot_every(snapshot_every_);
+std::vector<std::string> SessionRegistry::EvictIdle(std::int64_t cutoff_unix_ms) {
+  std::vector<std::string> evicted;
+  if (store_ == nullptr) return evicted;  // memory is the only copy
   std::unique_lock lock(mutex_);
-  if (!sessions_.emplace(session->id(), session).second) {
-    return Status(StatusCode::kAlreadyExists, "session '" + session->id() + "' exists twice");
+  for (auto it = sessions_.begin(); it != sessions_.end();) {
+    // use_count 1: only the registry holds it, no call is running on it.
+    if (it->second.use_count() == 1 && it->second->Stats().last_used_unix_ms < cutoff_unix_ms) {
+      evicted.push_back(it->first);
+      it = sessions_.erase(it);
+    } else {
+      ++it;
+    }
   }
-  return OkStatus();
+  return evicted;
 }
 
 Status SessionRegistry::Delete(const std::string& id) {
   std::unique_lock lock(mutex_);
-  if (sessions_.find(id) == sessions_.end()) return NotFoundError("no session '" + id + "'");
   if (store_ != nullptr) {
+    // The store knows evicted sessions too.
     if (Status status = store_->DeleteSession(id); !status.ok()) return status;
+  } else if (sessions_.find(id) == sessions_.end()) {
+    return NotFoundError("no session '" + id + "'");
   }
   sessions_.erase(id);
   return OkStatus();

@@ -2,7 +2,9 @@
 // take it alone. The sessions themselves serialise their own calls.
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <shared_mutex>
 #include <string>
 #include <unordered_map>
@@ -28,15 +30,25 @@ class SessionRegistry {
   // `config_blob` is what the store keeps to rebuild the settings after a restart.
   StatusOr<Created> Create(SessionSettings settings, std::string config_blob,
                            std::int64_t now_unix_ms);
-  // Adds a session rebuilt from the store at start-up.
-  Status Adopt(std::shared_ptr<Session> session);
+  // Loads a session that is in the store but not in memory (NOT_FOUND if the
+  // store does not have it either).
+  using Loader = std::function<StatusOr<std::shared_ptr<Session>>(const std::string& id)>;
+  void set_loader(Loader loader) { loader_ = std::move(loader); }
+
+  // The sessions in memory now.
+  std::vector<std::shared_ptr<Session>> Resident() const;
+  // Drops from memory the sessions of a store-backed registry that no call holds
+  // and that were last used before `cutoff_unix_ms`; returns their ids. They
+  // are loaded again on their next call.
+  std::vector<std::string> EvictIdle(std::int64_t cutoff_unix_ms);
   SessionStore* store() const { return store_; }
   // Snapshot policy given to every session created or adopted from now on.
   void set_snapshot_every(std::size_t samples) { snapshot_every_ = samples; }
-  // NOT_FOUND for an unknown id.
-  StatusOr<std::shared_ptr<Session>> Find(const std::string& id) const;
-  // Every session, ordered by id.
-  std::vector<std::shared_ptr<Session>> List() const;
+  // The session, loaded with the loader if it is not in memory. NOT_FOUND for an
+  // unknown id.
+  StatusOr<std::shared_ptr<Session>> Find(const std::string& id);
+  // Every session (loading evicted ones), ordered by id.
+  std::vector<std::shared_ptr<Session>> List();
   // NOT_FOUND for an unknown id.
   Status Delete(const std::string& id);
 
@@ -44,6 +56,8 @@ class SessionRegistry {
   const std::size_t max_sessions_;
   SessionStore* const store_;
   std::size_t snapshot_every_ = 0;
+  Loader loader_;
+  std::mutex load_mutex_;  // one load at a time, so an id is never loaded twice
   mutable std::shared_mutex mutex_;
   std::unordered_map<std::string, std::shared_ptr<Session>> sessions_;
 };

@@ -3,8 +3,12 @@
 // predicts exactly as before.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "integration/server_process.h"
@@ -137,6 +141,43 @@ TEST(Persistence, RestartFromASnapshotPredictsLikeAFullReplay) {
   for (int i = 0; i < after.relevance_size(); ++i)
     EXPECT_EQ(after.relevance(i), before.relevance(i));
   std::filesystem::remove_all(dir);
+}
+
+TEST(Persistence, IdleSessionsLeaveMemoryAndComeBackOnTheirNextCall) {
+  const std::string dir = ::testing::TempDir() + "/relmap_eviction_" + std::to_string(::getpid());
+  const std::string metrics_port_file = dir + "-metrics-port";
+  std::filesystem::remove_all(dir);
+  testing::ServerProcess server({"--data-dir", dir, "--evict-idle-seconds", "1", "--metrics-listen",
+                                 "127.0.0.1:0", "--metrics-port-file", metrics_port_file});
+  auto stub = RelevanceService::NewStub(server.Channel());
+  grpc::ClientContext create_context;
+  v1::CreateSessionRequest create;
+  create.mutable_config()->set_feature_dimension(2);
+  v1::CreateSessionResponse created;
+  ASSERT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
+  grpc::ClientContext add_context;
+  Authorise(add_context, created.session_token());
+  v1::AddSamplesResponse added;
+  ASSERT_TRUE(stub->AddSamples(&add_context, Samples(created.session_id(), "batch"), &added).ok());
+  const auto before = Classify(*stub, created.session_id(), created.session_token());
+  int metrics_port = 0;
+  std::ifstream(metrics_port_file) >> metrics_port;
+  EXPECT_NE(testing::HttpGet(metrics_port, "/metrics").find("relmap_sessions 1"),
+            std::string::npos);
+
+  // Idle for over a second: evicted within the next check (every second).
+  std::this_thread::sleep_for(std::chrono::milliseconds(2600));
+  EXPECT_NE(testing::HttpGet(metrics_port, "/metrics").find("relmap_sessions 0"),
+            std::string::npos);
+
+  const auto after = Classify(*stub, created.session_id(), created.session_token());
+  ASSERT_EQ(after.relevance_size(), before.relevance_size());
+  for (int i = 0; i < after.relevance_size(); ++i)
+    EXPECT_EQ(after.relevance(i), before.relevance(i));
+  EXPECT_NE(testing::HttpGet(metrics_port, "/metrics").find("relmap_sessions 1"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
+  std::remove(metrics_port_file.c_str());
 }
 
 TEST(ExportImport, AnImportedSessionPredictsBitForBitLikeTheOriginal) {

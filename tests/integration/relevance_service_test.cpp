@@ -426,24 +426,6 @@ TEST(RelevanceServerTls, ServesTlsWithTheGivenCertificate) {
   std::remove(key.c_str());
 }
 
-// GET of `path` on 127.0.0.1:`port`, the whole HTTP response.
-std::string HttpGet(int port, const std::string& path) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<std::uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) return {};
-  const std::string request = "GET " + path + " HTTP/1.0\r\n\r\n";
-  (void)::send(fd, request.data(), request.size(), 0);
-  std::string response;
-  char buffer[4096];
-  for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;)
-    response.append(buffer, static_cast<std::size_t>(n));
-  ::close(fd);
-  return response;
-}
-
 TEST(RelevanceServerMetrics, PrometheusEndpointCountsCallsAndSessions) {
   const std::string port_file = ::testing::TempDir() + "/relmap_metrics_port";
   std::remove(port_file.c_str());
@@ -462,7 +444,7 @@ TEST(RelevanceServerMetrics, PrometheusEndpointCountsCallsAndSessions) {
   int port = 0;
   std::ifstream(port_file) >> port;
   ASSERT_GT(port, 0);
-  const std::string metrics = HttpGet(port, "/metrics");
+  const std::string metrics = testing::HttpGet(port, "/metrics");
   EXPECT_NE(metrics.find("200 OK"), std::string::npos);
   EXPECT_NE(metrics.find("relmap_rpc_total{method=\"CreateSession\",code=\"OK\"} 1"),
             std::string::npos);
@@ -471,7 +453,7 @@ TEST(RelevanceServerMetrics, PrometheusEndpointCountsCallsAndSessions) {
   EXPECT_NE(metrics.find("relmap_rpc_latency_ms_count{method=\"CreateSession\"} 1"),
             std::string::npos);
   EXPECT_NE(metrics.find("relmap_sessions 1"), std::string::npos);
-  EXPECT_NE(HttpGet(port, "/other").find("404"), std::string::npos);
+  EXPECT_NE(testing::HttpGet(port, "/other").find("404"), std::string::npos);
   std::remove(port_file.c_str());
 }
 

@@ -31,4 +31,8 @@ class ServerProcess {
   std::string port_file_;
 };
 
+// GET of `path` on 127.0.0.1:`port`: the whole HTTP response, or "" if nothing
+// listens there.
+std::string HttpGet(int port, const std::string& path);
+
 }  // namespace relmap::testing
