@@ -54,6 +54,29 @@ v1::ClassifyFeaturesResponse Classify(RelevanceService::Stub& stub, const std::s
   return response;
 }
 
+// A new 2-d session (seed `seed`) that has learned the 60 samples of Samples().
+struct TrainedSession {
+  std::string id;
+  std::string token;
+  v1::AddSamplesResponse added;
+};
+
+TrainedSession CreateTrainedSession(RelevanceService::Stub& stub, std::uint64_t seed) {
+  grpc::ClientContext create_context;
+  v1::CreateSessionRequest create;
+  create.mutable_config()->set_feature_dimension(2);
+  create.mutable_config()->set_seed(seed);
+  v1::CreateSessionResponse created;
+  EXPECT_TRUE(stub.CreateSession(&create_context, create, &created).ok());
+  TrainedSession trained{created.session_id(), created.session_token(), {}};
+  grpc::ClientContext add_context;
+  Authorise(add_context, trained.token);
+  EXPECT_TRUE(stub.AddSamples(&add_context, Samples(trained.id, "batch-1"), &trained.added).ok());
+  EXPECT_EQ(trained.added.stats().moveable_samples() + trained.added.stats().non_moveable_samples(),
+            60u);
+  return trained;
+}
+
 // A 2-d session with the 60 samples of Samples(), on a server started with
 // `arguments`; its predictions; then the server is killed with SIGKILL.
 struct KilledSession {
@@ -65,20 +88,8 @@ struct KilledSession {
 KilledSession TrainThenKill(std::vector<std::string> arguments) {
   testing::ServerProcess server(std::move(arguments));
   auto stub = RelevanceService::NewStub(server.Channel());
-  grpc::ClientContext create_context;
-  v1::CreateSessionRequest create;
-  create.mutable_config()->set_feature_dimension(2);
-  create.mutable_config()->set_seed(17);
-  v1::CreateSessionResponse created;
-  EXPECT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
-  grpc::ClientContext add_context;
-  Authorise(add_context, created.session_token());
-  v1::AddSamplesResponse added;
-  EXPECT_TRUE(
-      stub->AddSamples(&add_context, Samples(created.session_id(), "batch-1"), &added).ok());
-  EXPECT_EQ(added.stats().moveable_samples() + added.stats().non_moveable_samples(), 60u);
-  KilledSession killed{created.session_id(), created.session_token(),
-                       Classify(*stub, created.session_id(), created.session_token())};
+  const TrainedSession trained = CreateTrainedSession(*stub, 17);
+  KilledSession killed{trained.id, trained.token, Classify(*stub, trained.id, trained.token)};
   server.Kill();
   return killed;
 }
@@ -150,16 +161,8 @@ TEST(Persistence, IdleSessionsLeaveMemoryAndComeBackOnTheirNextCall) {
   testing::ServerProcess server({"--data-dir", dir, "--evict-idle-seconds", "1", "--metrics-listen",
                                  "127.0.0.1:0", "--metrics-port-file", metrics_port_file});
   auto stub = RelevanceService::NewStub(server.Channel());
-  grpc::ClientContext create_context;
-  v1::CreateSessionRequest create;
-  create.mutable_config()->set_feature_dimension(2);
-  v1::CreateSessionResponse created;
-  ASSERT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
-  grpc::ClientContext add_context;
-  Authorise(add_context, created.session_token());
-  v1::AddSamplesResponse added;
-  ASSERT_TRUE(stub->AddSamples(&add_context, Samples(created.session_id(), "batch"), &added).ok());
-  const auto before = Classify(*stub, created.session_id(), created.session_token());
+  const TrainedSession created = CreateTrainedSession(*stub, 0);
+  const auto before = Classify(*stub, created.id, created.token);
   int metrics_port = 0;
   std::ifstream(metrics_port_file) >> metrics_port;
   EXPECT_NE(testing::HttpGet(metrics_port, "/metrics").find("relmap_sessions 1"),
@@ -170,7 +173,7 @@ TEST(Persistence, IdleSessionsLeaveMemoryAndComeBackOnTheirNextCall) {
   EXPECT_NE(testing::HttpGet(metrics_port, "/metrics").find("relmap_sessions 0"),
             std::string::npos);
 
-  const auto after = Classify(*stub, created.session_id(), created.session_token());
+  const auto after = Classify(*stub, created.id, created.token);
   ASSERT_EQ(after.relevance_size(), before.relevance_size());
   for (int i = 0; i < after.relevance_size(); ++i)
     EXPECT_EQ(after.relevance(i), before.relevance(i));
@@ -183,21 +186,13 @@ TEST(Persistence, IdleSessionsLeaveMemoryAndComeBackOnTheirNextCall) {
 TEST(ExportImport, AnImportedSessionPredictsBitForBitLikeTheOriginal) {
   testing::ServerProcess server;
   auto stub = RelevanceService::NewStub(server.Channel());
-  grpc::ClientContext create_context;
-  v1::CreateSessionRequest create;
-  create.mutable_config()->set_feature_dimension(2);
-  create.mutable_config()->set_seed(5);
-  v1::CreateSessionResponse created;
-  ASSERT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
-  grpc::ClientContext add_context;
-  Authorise(add_context, created.session_token());
-  v1::AddSamplesResponse added;
-  ASSERT_TRUE(stub->AddSamples(&add_context, Samples(created.session_id(), "batch"), &added).ok());
+  const TrainedSession created = CreateTrainedSession(*stub, 5);
+  const v1::AddSamplesResponse& added = created.added;
 
   grpc::ClientContext export_context;
-  Authorise(export_context, created.session_token());
+  Authorise(export_context, created.token);
   v1::ExportSessionRequest export_request;
-  export_request.set_session_id(created.session_id());
+  export_request.set_session_id(created.id);
   v1::ExportSessionResponse exported;
   ASSERT_TRUE(stub->ExportSession(&export_context, export_request, &exported).ok());
   EXPECT_EQ(exported.state().samples_size(), 60);
@@ -208,11 +203,11 @@ TEST(ExportImport, AnImportedSessionPredictsBitForBitLikeTheOriginal) {
   *import_request.mutable_state() = exported.state();
   v1::ImportSessionResponse imported;
   ASSERT_TRUE(stub->ImportSession(&import_context, import_request, &imported).ok());
-  EXPECT_NE(imported.session_id(), created.session_id());
+  EXPECT_NE(imported.session_id(), created.id);
   EXPECT_EQ(imported.stats().moveable_samples(), added.stats().moveable_samples());
   EXPECT_EQ(imported.stats().moveable_components(), added.stats().moveable_components());
 
-  const auto original = Classify(*stub, created.session_id(), created.session_token());
+  const auto original = Classify(*stub, created.id, created.token);
   const auto copy = Classify(*stub, imported.session_id(), imported.session_token());
   ASSERT_EQ(original.relevance_size(), copy.relevance_size());
   for (int i = 0; i < copy.relevance_size(); ++i)
