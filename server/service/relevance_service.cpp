@@ -74,6 +74,13 @@ StatusOr<LabelledRows> LabelledRowsOf(
 
 }  // namespace
 
+Status RelevanceService::CheckFeatureCount(int count) const {
+  if (static_cast<std::size_t>(count) <= max_features_per_request_) return OkStatus();
+  return ResourceExhaustedError("the request carries " + std::to_string(count) +
+                                " feature vectors; this server takes at most " +
+                                std::to_string(max_features_per_request_) + " per request");
+}
+
 std::string RelevanceService::MetricsText() const {
   std::uint64_t samples = 0;
   const auto sessions = registry_.Resident();  // a scrape must not load evicted sessions
@@ -260,6 +267,9 @@ grpc::Status RelevanceService::ClassifyFeatures(grpc::ServerContext* context,
   return Logged(metrics_, "ClassifyFeatures", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
+    if (Status limit = CheckFeatureCount(request->features_size()); !limit.ok()) {
+      return ToGrpcStatus(limit);
+    }
     auto rows = FeatureRows(request->features());
     if (!rows.ok()) return ToGrpcStatus(rows.status());
     auto maps = (*session)->ClassifyFeatures(*rows, NowUnixMs());
@@ -277,6 +287,9 @@ grpc::Status RelevanceService::AddSamples(grpc::ServerContext* context,
   return Logged(metrics_, "AddSamples", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
+    if (Status limit = CheckFeatureCount(request->samples_size()); !limit.ok()) {
+      return ToGrpcStatus(limit);
+    }
     auto rows = LabelledRowsOf(request->samples());
     if (!rows.ok()) return ToGrpcStatus(rows.status());
     auto stats =
@@ -322,6 +335,8 @@ grpc::Status RelevanceService::ImportSession(grpc::ServerContext* context,
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                           "state.target_rng_state must hold the 4 words of the RNG");
     }
+    if (Status limit = CheckFeatureCount(in.samples_size()); !limit.ok())
+      return ToGrpcStatus(limit);
     session::SessionState state;
     if (in.samples_size() > 0) {
       auto rows = LabelledRowsOf(in.samples());

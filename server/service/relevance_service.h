@@ -19,8 +19,11 @@ class RelevanceService final : public v1::RelevanceService::Service {
   // `admin_key_hash`: SHA-256 hex of the admin key that guards CreateSession,
   // ListSessions and DeleteSession, or empty for none.
   RelevanceService(session::SessionRegistry& registry, perception::DecodeLimits limits,
-                   std::string admin_key_hash = {})
-      : registry_(registry), limits_(limits), admin_key_hash_(std::move(admin_key_hash)) {}
+                   std::size_t max_features_per_request, std::string admin_key_hash = {})
+      : registry_(registry),
+        limits_(limits),
+        max_features_per_request_(max_features_per_request),
+        admin_key_hash_(std::move(admin_key_hash)) {}
 
   grpc::Status CreateSession(grpc::ServerContext* context, const v1::CreateSessionRequest* request,
                              v1::CreateSessionResponse* response) override;
@@ -59,7 +62,11 @@ class RelevanceService final : public v1::RelevanceService::Service {
   Status AdminAuthorised(const grpc::ServerContext& context) const;
 
   session::SessionRegistry& registry_;
+  // RESOURCE_EXHAUSTED when a request carries more feature vectors than allowed.
+  Status CheckFeatureCount(int count) const;
+
   const perception::DecodeLimits limits_;
+  const std::size_t max_features_per_request_;
   const std::string admin_key_hash_;
   Metrics metrics_;
 };

@@ -3,6 +3,7 @@
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <stdlib.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -455,6 +456,38 @@ TEST(RelevanceServerMetrics, PrometheusEndpointCountsCallsAndSessions) {
   EXPECT_NE(metrics.find("relmap_sessions 1"), std::string::npos);
   EXPECT_NE(testing::HttpGet(port, "/other").find("404"), std::string::npos);
   std::remove(port_file.c_str());
+}
+
+TEST(RelevanceServerConfiguration, ConfigFileAndEnvironmentSetLimits) {
+  const std::string config = ::testing::TempDir() + "/relmap_server.conf";
+  std::ofstream(config) << "# limits for this test\nmax-features-per-request 3\n";
+  ::setenv("RELMAP_MAX_SESSIONS", "1", 1);
+  testing::ServerProcess server({"--config", config});
+  ::unsetenv("RELMAP_MAX_SESSIONS");
+  auto stub = RelevanceService::NewStub(server.Channel());
+
+  grpc::ClientContext create_context;
+  v1::CreateSessionRequest create;
+  create.mutable_config()->set_feature_dimension(1);
+  v1::CreateSessionResponse created;
+  ASSERT_TRUE(stub->CreateSession(&create_context, create, &created).ok());
+  grpc::ClientContext second_context;
+  v1::CreateSessionResponse second;
+  EXPECT_EQ(stub->CreateSession(&second_context, create, &second).error_code(),
+            grpc::StatusCode::RESOURCE_EXHAUSTED);  // RELMAP_MAX_SESSIONS=1
+
+  const auto classify = [&](int vectors) {
+    grpc::ClientContext context;
+    context.AddMetadata("authorization", "Bearer " + created.session_token());
+    v1::ClassifyFeaturesRequest request;
+    request.set_session_id(created.session_id());
+    for (int i = 0; i < vectors; ++i) request.add_features()->add_values(0.1 * i);
+    v1::ClassifyFeaturesResponse response;
+    return stub->ClassifyFeatures(&context, request, &response).error_code();
+  };
+  EXPECT_EQ(classify(3), grpc::StatusCode::OK);
+  EXPECT_EQ(classify(4), grpc::StatusCode::RESOURCE_EXHAUSTED);  // the config file's limit
+  std::remove(config.c_str());
 }
 
 TEST(RelevanceServerLifecycle, SigtermStopsTheServerCleanly) {
