@@ -72,29 +72,37 @@ grpc::Status RelevanceClient::PostOutcome(const SessionHandle& session, std::uin
                                           std::uint32_t supervoxel_id, v1::Label label,
                                           const std::string& request_id,
                                           v1::PostOutcomeResponse* response) {
-  grpc::ClientContext context;
-  Authorise(context, session);
-  v1::PostOutcomeRequest request;
-  request.set_session_id(session.id);
-  request.set_frame_id(frame_id);
-  request.set_supervoxel_id(supervoxel_id);
+  v1::PostOutcomeRequest request = OutcomeRequest(session, frame_id, supervoxel_id, request_id);
   request.set_label(label);
-  request.set_request_id(request_id);
-  return stub_->PostOutcome(&context, request, response);
+  return SendOutcome(session, request, response);
 }
 
 grpc::Status RelevanceClient::PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
                                           std::uint32_t supervoxel_id, const v1::Cloud& after_cloud,
                                           const std::string& request_id,
                                           v1::PostOutcomeResponse* response) {
-  grpc::ClientContext context;
-  Authorise(context, session);
+  v1::PostOutcomeRequest request = OutcomeRequest(session, frame_id, supervoxel_id, request_id);
+  *request.mutable_after_cloud() = after_cloud;
+  return SendOutcome(session, request, response);
+}
+
+v1::PostOutcomeRequest RelevanceClient::OutcomeRequest(const SessionHandle& session,
+                                                       std::uint64_t frame_id,
+                                                       std::uint32_t supervoxel_id,
+                                                       const std::string& request_id) {
   v1::PostOutcomeRequest request;
   request.set_session_id(session.id);
   request.set_frame_id(frame_id);
   request.set_supervoxel_id(supervoxel_id);
-  *request.mutable_after_cloud() = after_cloud;
   request.set_request_id(request_id);
+  return request;
+}
+
+grpc::Status RelevanceClient::SendOutcome(const SessionHandle& session,
+                                          const v1::PostOutcomeRequest& request,
+                                          v1::PostOutcomeResponse* response) {
+  grpc::ClientContext context;
+  Authorise(context, session);
   return stub_->PostOutcome(&context, request, response);
 }
 

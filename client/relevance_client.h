@@ -51,6 +51,12 @@ class RelevanceClient {
   static void Authorise(grpc::ClientContext& context, const SessionHandle& session);
 
   void AddAdminKey(grpc::ClientContext& context) const;
+  // A PostOutcomeRequest without its outcome, and sending one.
+  static v1::PostOutcomeRequest OutcomeRequest(const SessionHandle& session, std::uint64_t frame_id,
+                                               std::uint32_t supervoxel_id,
+                                               const std::string& request_id);
+  grpc::Status SendOutcome(const SessionHandle& session, const v1::PostOutcomeRequest& request,
+                           v1::PostOutcomeResponse* response);
 
   std::unique_ptr<v1::RelevanceService::Stub> stub_;
   std::string admin_key_;
