@@ -1,71 +1,141 @@
-// Thin wrappers over the generated stub.
+// Each RPC is one line of request building over Invoke, which owns the deadline,
+// the metadata and the retries.
 #include "relevance_client.h"
 
+#include <chrono>
+#include <cstdio>
+#include <random>
+#include <thread>
+
 namespace relmap::client {
+namespace {
 
-RelevanceClient::RelevanceClient(const std::string& address, int max_message_bytes) {
+std::shared_ptr<grpc::Channel> MakeChannel(const ClientOptions& options) {
   grpc::ChannelArguments arguments;
-  arguments.SetMaxSendMessageSize(max_message_bytes);
-  arguments.SetMaxReceiveMessageSize(max_message_bytes);
-  stub_ = v1::RelevanceService::NewStub(
-      grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), arguments));
+  arguments.SetMaxSendMessageSize(options.max_message_bytes);
+  arguments.SetMaxReceiveMessageSize(options.max_message_bytes);
+  if (options.tls_root_certificates.empty()) {
+    return grpc::CreateCustomChannel(options.address, grpc::InsecureChannelCredentials(),
+                                     arguments);
+  }
+  grpc::SslCredentialsOptions tls;
+  tls.pem_root_certs = options.tls_root_certificates;
+  return grpc::CreateCustomChannel(options.address, grpc::SslCredentials(tls), arguments);
 }
 
-void RelevanceClient::Authorise(grpc::ClientContext& context, const SessionHandle& session) {
-  context.AddMetadata("authorization", "Bearer " + session.token);
-  context.AddMetadata("x-relmap-session", session.id);
+// Per thread, so that the client can be shared without a lock.
+std::mt19937_64& ThreadRandom() {
+  thread_local std::mt19937_64 random = [] {
+    std::random_device device;
+    std::seed_seq seed{device(), device(), device(), device()};
+    return std::mt19937_64(seed);
+  }();
+  return random;
 }
 
-void RelevanceClient::AddAdminKey(grpc::ClientContext& context) const {
-  if (!admin_key_.empty()) context.AddMetadata("x-relmap-admin-key", admin_key_);
+const std::string& OrRandom(const std::string& request_id, std::string& generated) {
+  if (!request_id.empty()) return request_id;
+  generated = RandomRequestId();
+  return generated;
 }
 
-grpc::Status RelevanceClient::CreateSession(const v1::SessionConfig& config, SessionHandle* session,
-                                            v1::CreateSessionResponse* response) {
-  grpc::ClientContext context;
-  AddAdminKey(context);
-  v1::CreateSessionRequest request;
-  *request.mutable_config() = config;
-  v1::CreateSessionResponse local;
-  v1::CreateSessionResponse* out = response != nullptr ? response : &local;
-  const grpc::Status status = stub_->CreateSession(&context, request, out);
+ClientOptions PlaintextOptions(const std::string& address, int max_message_bytes) {
+  ClientOptions options;
+  options.address = address;
+  options.max_message_bytes = max_message_bytes;
+  return options;
+}
+
+}  // namespace
+
+RelevanceClient::RelevanceClient(ClientOptions options)
+    : options_(std::move(options)), stub_(v1::RelevanceService::NewStub(MakeChannel(options_))) {}
+
+RelevanceClient::RelevanceClient(const std::string& address, int max_message_bytes)
+    : RelevanceClient(PlaintextOptions(address, max_message_bytes)) {}
+
+template <typename Request, typename Response>
+grpc::Status RelevanceClient::Invoke(Rpc<Request, Response> rpc, const Request& request,
+                                     Response* response, Idempotence idempotence,
+                                     const Metadata& metadata) {
+  const auto deadline = std::chrono::system_clock::now() + options_.deadline;
+  for (int attempt = 1;; ++attempt) {
+    grpc::ClientContext context;
+    context.set_deadline(deadline);
+    for (const auto& [key, value] : metadata) context.AddMetadata(key, value);
+    const grpc::Status status = ((*stub_).*rpc)(&context, request, response);
+    if (status.ok() || attempt >= options_.retry.max_attempts ||
+        !IsRetryable(status, idempotence)) {
+      return status;
+    }
+    const std::chrono::milliseconds wait =
+        BackoffBefore(attempt + 1, options_.retry,
+                      std::uniform_real_distribution<double>(0.0, 1.0)(ThreadRandom()));
+    if (std::chrono::system_clock::now() + wait >= deadline) return status;
+    std::this_thread::sleep_for(wait);
+    ++retries_;
+  }
+}
+
+template <typename Request, typename Response>
+grpc::Status RelevanceClient::StartSession(Rpc<Request, Response> rpc, const Request& request,
+                                           SessionHandle* session, Response* response) {
+  Response local;
+  Response* out = response != nullptr ? response : &local;
+  const grpc::Status status =
+      Invoke(rpc, request, out, Idempotence::kNotIdempotent, AdminMetadata());
   if (status.ok()) *session = {out->session_id(), out->session_token()};
   return status;
 }
 
+RelevanceClient::Metadata RelevanceClient::SessionMetadata(const SessionHandle& session) {
+  return {{"authorization", "Bearer " + session.token}, {"x-relmap-session", session.id}};
+}
+
+RelevanceClient::Metadata RelevanceClient::AdminMetadata() const {
+  if (admin_key_.empty()) return {};
+  return {{"x-relmap-admin-key", admin_key_}};
+}
+
+grpc::Status RelevanceClient::CreateSession(const v1::SessionConfig& config, SessionHandle* session,
+                                            v1::CreateSessionResponse* response) {
+  v1::CreateSessionRequest request;
+  *request.mutable_config() = config;
+  return StartSession(&v1::RelevanceService::Stub::CreateSession, request, session, response);
+}
+
 grpc::Status RelevanceClient::GetSession(const SessionHandle& session,
                                          v1::GetSessionResponse* response) {
-  grpc::ClientContext context;
-  Authorise(context, session);
   v1::GetSessionRequest request;
   request.set_session_id(session.id);
-  return stub_->GetSession(&context, request, response);
+  return Invoke(&v1::RelevanceService::Stub::GetSession, request, response,
+                Idempotence::kIdempotent, SessionMetadata(session));
 }
 
 grpc::Status RelevanceClient::ListSessions(v1::ListSessionsResponse* response) {
-  grpc::ClientContext context;
-  AddAdminKey(context);
-  return stub_->ListSessions(&context, v1::ListSessionsRequest{}, response);
+  return Invoke(&v1::RelevanceService::Stub::ListSessions, v1::ListSessionsRequest{}, response,
+                Idempotence::kIdempotent, AdminMetadata());
 }
 
 grpc::Status RelevanceClient::DeleteSession(const SessionHandle& session) {
-  grpc::ClientContext context;
-  Authorise(context, session);
-  AddAdminKey(context);
   v1::DeleteSessionRequest request;
   request.set_session_id(session.id);
   v1::DeleteSessionResponse response;
-  return stub_->DeleteSession(&context, request, &response);
+  Metadata metadata = SessionMetadata(session);
+  for (auto& entry : AdminMetadata()) metadata.push_back(std::move(entry));
+  // Not idempotent in its answer: a repeat after a lost reply would say NOT_FOUND.
+  return Invoke(&v1::RelevanceService::Stub::DeleteSession, request, &response,
+                Idempotence::kNotIdempotent, metadata);
 }
 
 grpc::Status RelevanceClient::ComputeMaps(const SessionHandle& session, const v1::Cloud& cloud,
                                           v1::ComputeMapsResponse* response) {
-  grpc::ClientContext context;
-  Authorise(context, session);
   v1::ComputeMapsRequest request;
   request.set_session_id(session.id);
   *request.mutable_cloud() = cloud;
-  return stub_->ComputeMaps(&context, request, response);
+  // A repeat would draw another target and cache another frame.
+  return Invoke(&v1::RelevanceService::Stub::ComputeMaps, request, response,
+                Idempotence::kNotIdempotent, SessionMetadata(session));
 }
 
 grpc::Status RelevanceClient::PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
@@ -74,7 +144,8 @@ grpc::Status RelevanceClient::PostOutcome(const SessionHandle& session, std::uin
                                           v1::PostOutcomeResponse* response) {
   v1::PostOutcomeRequest request = OutcomeRequest(session, frame_id, supervoxel_id, request_id);
   request.set_label(label);
-  return SendOutcome(session, request, response);
+  return Invoke(&v1::RelevanceService::Stub::PostOutcome, request, response,
+                Idempotence::kIdempotent, SessionMetadata(session));
 }
 
 grpc::Status RelevanceClient::PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
@@ -83,7 +154,8 @@ grpc::Status RelevanceClient::PostOutcome(const SessionHandle& session, std::uin
                                           v1::PostOutcomeResponse* response) {
   v1::PostOutcomeRequest request = OutcomeRequest(session, frame_id, supervoxel_id, request_id);
   *request.mutable_after_cloud() = after_cloud;
-  return SendOutcome(session, request, response);
+  return Invoke(&v1::RelevanceService::Stub::PostOutcome, request, response,
+                Idempotence::kIdempotent, SessionMetadata(session));
 }
 
 v1::PostOutcomeRequest RelevanceClient::OutcomeRequest(const SessionHandle& session,
@@ -94,22 +166,56 @@ v1::PostOutcomeRequest RelevanceClient::OutcomeRequest(const SessionHandle& sess
   request.set_session_id(session.id);
   request.set_frame_id(frame_id);
   request.set_supervoxel_id(supervoxel_id);
-  request.set_request_id(request_id);
+  std::string generated;
+  request.set_request_id(OrRandom(request_id, generated));
   return request;
 }
 
-grpc::Status RelevanceClient::SendOutcome(const SessionHandle& session,
-                                          const v1::PostOutcomeRequest& request,
-                                          v1::PostOutcomeResponse* response) {
-  grpc::ClientContext context;
-  Authorise(context, session);
-  return stub_->PostOutcome(&context, request, response);
+grpc::Status RelevanceClient::ClassifyFeatures(const SessionHandle& session,
+                                               v1::ClassifyFeaturesRequest request,
+                                               v1::ClassifyFeaturesResponse* response) {
+  request.set_session_id(session.id);
+  return Invoke(&v1::RelevanceService::Stub::ClassifyFeatures, request, response,
+                Idempotence::kIdempotent, SessionMetadata(session));
+}
+
+grpc::Status RelevanceClient::AddSamples(const SessionHandle& session,
+                                         v1::AddSamplesRequest request,
+                                         v1::AddSamplesResponse* response) {
+  request.set_session_id(session.id);
+  std::string generated;
+  request.set_request_id(OrRandom(request.request_id(), generated));
+  return Invoke(&v1::RelevanceService::Stub::AddSamples, request, response,
+                Idempotence::kIdempotent, SessionMetadata(session));
+}
+
+grpc::Status RelevanceClient::ExportSession(const SessionHandle& session,
+                                            v1::ExportSessionResponse* response) {
+  v1::ExportSessionRequest request;
+  request.set_session_id(session.id);
+  return Invoke(&v1::RelevanceService::Stub::ExportSession, request, response,
+                Idempotence::kIdempotent, SessionMetadata(session));
+}
+
+grpc::Status RelevanceClient::ImportSession(const v1::SessionState& state, SessionHandle* session,
+                                            v1::ImportSessionResponse* response) {
+  v1::ImportSessionRequest request;
+  *request.mutable_state() = state;
+  return StartSession(&v1::RelevanceService::Stub::ImportSession, request, session, response);
 }
 
 v1::Cloud PcdCloud(std::string pcd_bytes) {
   v1::Cloud cloud;
   cloud.set_pcd(std::move(pcd_bytes));
   return cloud;
+}
+
+std::string RandomRequestId() {
+  std::mt19937_64& random = ThreadRandom();
+  char hex[33];
+  std::snprintf(hex, sizeof hex, "%016llx%016llx", static_cast<unsigned long long>(random()),
+                static_cast<unsigned long long>(random()));
+  return hex;
 }
 
 }  // namespace relmap::client

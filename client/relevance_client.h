@@ -1,14 +1,22 @@
-// The C++ client of the relevance server: one object per server connection,
-// session calls authorised with the session's token. Errors come back as the
-// server's gRPC status.
+// The C++ client of the relevance server: one object per server connection, safe to
+// share between threads. Session calls are authorised with the session's token; every
+// call has a deadline; calls the server provably did not run, and idempotent calls
+// that met a broken connection, are retried with backoff (retry.h). Errors come back
+// as the server's gRPC status.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
 
+#include <atomic>
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "client_options.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
+#include "retry.h"
 
 namespace relmap::client {
 
@@ -20,8 +28,8 @@ struct SessionHandle {
 
 class RelevanceClient {
  public:
-  // Connects to `address` (host:port), insecure, with `max_message_bytes` for
-  // clouds in both directions.
+  explicit RelevanceClient(ClientOptions options);
+  // Plaintext to `address` (host:port) with the default deadline and retries.
   explicit RelevanceClient(const std::string& address, int max_message_bytes = 64 << 20);
 
   grpc::Status CreateSession(const v1::SessionConfig& config, SessionHandle* session,
@@ -31,6 +39,9 @@ class RelevanceClient {
   grpc::Status DeleteSession(const SessionHandle& session);
   grpc::Status ComputeMaps(const SessionHandle& session, const v1::Cloud& cloud,
                            v1::ComputeMapsResponse* response);
+  // PostOutcome and AddSamples are deduplicated by the server on `request_id`; an
+  // empty one is replaced by a fresh random id, so that these calls are always safe
+  // to retry. Pass your own to make a repeat after a client crash harmless too.
   grpc::Status PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
                            std::uint32_t supervoxel_id, v1::Label label,
                            const std::string& request_id, v1::PostOutcomeResponse* response);
@@ -38,31 +49,62 @@ class RelevanceClient {
   grpc::Status PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
                            std::uint32_t supervoxel_id, const v1::Cloud& after_cloud,
                            const std::string& request_id, v1::PostOutcomeResponse* response);
+  // `request`'s session id (and an empty request id) are filled in here.
+  grpc::Status ClassifyFeatures(const SessionHandle& session, v1::ClassifyFeaturesRequest request,
+                                v1::ClassifyFeaturesResponse* response);
+  grpc::Status AddSamples(const SessionHandle& session, v1::AddSamplesRequest request,
+                          v1::AddSamplesResponse* response);
+  grpc::Status ExportSession(const SessionHandle& session, v1::ExportSessionResponse* response);
+  // A new session from exported state; `session` receives its id and token.
+  grpc::Status ImportSession(const v1::SessionState& state, SessionHandle* session,
+                             v1::ImportSessionResponse* response = nullptr);
 
-  // The admin key sent with CreateSession, ListSessions and DeleteSession, for
-  // servers started with one.
+  // The admin key sent with CreateSession, ListSessions, DeleteSession and
+  // ImportSession, for servers started with one.
   void set_admin_key(std::string key) { admin_key_ = std::move(key); }
+  const ClientOptions& options() const { return options_; }
+  // Attempts beyond the first, over the client's life.
+  std::uint64_t retries() const { return retries_.load(); }
 
   v1::RelevanceService::Stub& stub() { return *stub_; }
 
  private:
-  // A context for a call on `session`: its bearer token, and its id as
-  // x-relmap-session for load balancers that route by session.
-  static void Authorise(grpc::ClientContext& context, const SessionHandle& session);
+  using Metadata = std::vector<std::pair<std::string, std::string>>;
+  template <typename Request, typename Response>
+  using Rpc = grpc::Status (v1::RelevanceService::Stub::*)(grpc::ClientContext*, const Request&,
+                                                           Response*);
 
-  void AddAdminKey(grpc::ClientContext& context) const;
-  // A PostOutcomeRequest without its outcome, and sending one.
+  // One logical call: attempts with `metadata` until success, a final status, the
+  // attempt limit or the deadline.
+  template <typename Request, typename Response>
+  grpc::Status Invoke(Rpc<Request, Response> rpc, const Request& request, Response* response,
+                      Idempotence idempotence, const Metadata& metadata);
+
+  // CreateSession and ImportSession: an admin call that yields a new session, whose id
+  // and token go to `session` (and the whole answer to `response` if not null).
+  template <typename Request, typename Response>
+  grpc::Status StartSession(Rpc<Request, Response> rpc, const Request& request,
+                            SessionHandle* session, Response* response);
+
+  // The metadata of a call on `session`: its bearer token, and its id as
+  // x-relmap-session for load balancers that route by session.
+  static Metadata SessionMetadata(const SessionHandle& session);
+  Metadata AdminMetadata() const;
+  // A PostOutcomeRequest without its outcome.
   static v1::PostOutcomeRequest OutcomeRequest(const SessionHandle& session, std::uint64_t frame_id,
                                                std::uint32_t supervoxel_id,
                                                const std::string& request_id);
-  grpc::Status SendOutcome(const SessionHandle& session, const v1::PostOutcomeRequest& request,
-                           v1::PostOutcomeResponse* response);
 
+  ClientOptions options_;
   std::unique_ptr<v1::RelevanceService::Stub> stub_;
   std::string admin_key_;
+  std::atomic<std::uint64_t> retries_{0};
 };
 
 // A cloud message carrying the bytes of a PCD file.
 v1::Cloud PcdCloud(std::string pcd_bytes);
+
+// 128 random bits as 32 hex digits: a request id no other client will pick.
+std::string RandomRequestId();
 
 }  // namespace relmap::client

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The relmap CLI against a real server: create, maps (if the real clouds are
-# present), post, idempotent repost, get, wrong token, delete.
+# The relmap CLI against a real server: every command, the renderings, the exit codes
+# (0 answer, 1 server error, 2 bad arguments), idempotent outcomes and streams.
 set -u
 server=$1
 cli=$2
@@ -17,35 +17,62 @@ check() {  # check <name> <condition command...>
   shift
   if "$@"; then echo "ok   $name"; else echo "FAIL $name"; failures=$((failures + 1)); fi
 }
+field() {  # field <name> <json>: a top-level string or number field
+  sed -E "s/.*\"$1\":\"?([^\",}]*).*/\1/" <<<"$2"
+}
+exit_code() { "$@" >/dev/null 2>&1; echo $?; }
 
-created=$("$cli" create --seed 3 --feature-dimension 2)
+# Feature sessions: create, show, stream (twice: the second adds nothing), export/import.
+created=$("$cli" session create --seed 3 --feature-dimension 2)
 check create grep -q '"sessionToken":"' <<<"$created"
-export RELMAP_SESSION=$(sed -E 's/.*"sessionId":"([^"]*)".*/\1/' <<<"$created")
-export RELMAP_TOKEN=$(sed -E 's/.*"sessionToken":"([^"]*)".*/\1/' <<<"$created")
-check get grep -q '"featureDimension":2' <<<"$("$cli" get)"
-check wrong-token test "$("$cli" get --token nope 2>&1 >/dev/null | grep -c 'wrong token')" = 1
-"$cli" get --token nope >/dev/null 2>&1
-check wrong-token-exit test $? = 1
-check maps-on-feature-session test "$("$cli" maps --cloud /dev/null 2>&1 | grep -c 'code 9\|code 3')" = 1
-check bad-label test "$("$cli" post --frame 1 --supervoxel 0 --label maybe 2>&1 | grep -c 'moveable or not-moveable')" = 1
-check list grep -q "$RELMAP_SESSION" <<<"$("$cli" list)"
+session=$(field sessionId "$created")
+export RELMAP_TOKEN=$(field sessionToken "$created")
+check show grep -q '"featureDimension":2' <<<"$("$cli" session show "$session")"
+check list grep -q "$session" <<<"$("$cli" session list)"
+check wrong-token-exit-1 test "$(exit_code "$cli" session show "$session" --token nope)" = 1
+check wrong-token-message grep -q 'wrong token' <<<"$("$cli" session show "$session" --token nope 2>&1)"
+check unknown-flag-exit-2 test "$(exit_code "$cli" session show "$session" --colour red)" = 2
+check missing-session-exit-2 test "$(exit_code "$cli" session show)" = 2
 
-if [ -f "$cloud" ]; then
-  created=$("$cli" create --seed 3)
-  export RELMAP_SESSION=$(sed -E 's/.*"sessionId":"([^"]*)".*/\1/' <<<"$created")
-  export RELMAP_TOKEN=$(sed -E 's/.*"sessionToken":"([^"]*)".*/\1/' <<<"$created")
-  maps=$("$cli" maps --cloud "$cloud")
-  check maps grep -q '"frameId":"1"' <<<"$maps"
-  target=$(sed -E 's/.*"targetSupervoxelId":([0-9]+).*/\1/' <<<"$maps")
-  check post grep -q '"moveableSamples":"1"' <<<"$("$cli" post --frame 1 --supervoxel "$target" --label moveable --request-id r1)"
-  check repost grep -q '"moveableSamples":"1"' <<<"$("$cli" post --frame 1 --supervoxel "$target" --label moveable --request-id r1)"
-  check after-cloud-unchanged grep -q '"label":"LABEL_NOT_MOVEABLE"' <<<"$("$cli" post --frame 1 --supervoxel "$target" --after-cloud "$cloud" --request-id r2)"
-  check stale-frame test "$("$cli" post --frame 99 --supervoxel 0 --label moveable 2>&1 | grep -c 'code 9')" = 1
-else
-  echo "skip maps/post: $cloud not found"
-fi
-"$cli" delete >/dev/null
-check delete test $? = 0
-check deleted test "$("$cli" get 2>&1 | grep -c 'code 5')" = 1
-check log-has-session grep -q "rpc=GetSession session=$RELMAP_SESSION" "$dir/server.log"
+{
+  echo "label,f1,f2"
+  for i in $(seq 0 249); do echo "$((i % 2)),$((i % 2)).$((i % 7)),$((i % 5)).25"; done
+} >"$dir/samples.csv"
+"$cli" stream "$session" "$dir/samples.csv" --batch 100 >"$dir/stream.json" 2>"$dir/progress.txt"
+check stream grep -q '"moveableSamples":"125"' "$dir/stream.json"
+check stream-progress grep -q '100% 250/250 samples' "$dir/progress.txt"
+check stream-again-adds-nothing grep -q '"moveableSamples":"125"' <<<"$("$cli" stream "$session" "$dir/samples.csv" --batch 100 2>/dev/null)"
+printf '1,0.5,0.5\n0,0.5\n' >"$dir/ragged.csv"
+check stream-bad-csv-exit-2 test "$(exit_code "$cli" stream "$session" "$dir/ragged.csv")" = 2
+
+check export grep -q '"nonMoveableSamples":"125"' <<<"$("$cli" session export "$session" --out "$dir/state.json")"
+imported=$("$cli" session import "$dir/state.json")
+check import grep -q '"moveableSamples":"125"' <<<"$imported"
+check import-binary grep -q '"moveableSamples":"125"' <<<"$("$cli" session export "$session" --out "$dir/state.pb" >/dev/null && "$cli" session import "$dir/state.pb")"
+check wrong-dimension-exit-1 test "$(exit_code "$cli" stream "$session" <(echo 1,0.5,0.5,0.5))" = 1
+check maps-on-feature-session-exit-1 test "$(exit_code "$cli" maps "$session" "$cloud")" = 1
+
+# Cloud sessions: maps with renderings, outcomes, idempotence, the after cloud, stale frames.
+created=$("$cli" session create --seed 3)
+session=$(field sessionId "$created")
+export RELMAP_TOKEN=$(field sessionToken "$created")
+maps=$("$cli" maps "$session" "$cloud" --png "$dir/relevance.png" --choice-png "$dir/choice.png" --pcd "$dir/coloured.pcd")
+check maps grep -q '"frameId":"1"' <<<"$maps"
+check maps-without-point-labels grep -q '"pointLabels":\[\]' <<<"$maps"
+check relevance-png test "$(head -c 4 "$dir/relevance.png" | tail -c 3)" = PNG
+check choice-png test "$(head -c 4 "$dir/choice.png" | tail -c 3)" = PNG
+check coloured-pcd grep -aq '^FIELDS x y z rgb$' "$dir/coloured.pcd"
+check coloured-pcd-is-a-cloud grep -q '"frameId":"2"' <<<"$("$cli" maps "$session" "$dir/coloured.pcd")"
+target=$(field targetSupervoxelId "$maps")
+check outcome grep -q '"moveableSamples":"1"' <<<"$("$cli" outcome "$session" 1 "$target" moved --request-id r1)"
+check outcome-repeat grep -q '"moveableSamples":"1"' <<<"$("$cli" outcome "$session" 1 "$target" moved --request-id r1)"
+check outcome-still grep -q '"nonMoveableSamples":"1"' <<<"$("$cli" outcome "$session" 1 "$target" still)"
+check after-cloud-unchanged grep -q '"label":"LABEL_NOT_MOVEABLE"' <<<"$("$cli" outcome "$session" 1 "$target" --after-cloud "$cloud" --request-id r2)"
+check stale-frame-exit-1 test "$(exit_code "$cli" outcome "$session" 99 0 moved)" = 1
+check stale-frame-message grep -q 'code 9' <<<"$("$cli" outcome "$session" 99 0 moved 2>&1)"
+check bad-outcome-exit-2 test "$(exit_code "$cli" outcome "$session" 1 "$target" maybe)" = 2
+
+check delete test "$(exit_code "$cli" session delete "$session")" = 0
+check deleted grep -q 'code 5' <<<"$("$cli" session show "$session" 2>&1)"
+check log-has-session grep -q "rpc=GetSession session=$session" "$dir/server.log"
 exit $((failures > 0))

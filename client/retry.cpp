@@ -1,0 +1,30 @@
+// Retry classification and exponential backoff with jitter.
+#include "retry.h"
+
+#include <algorithm>
+
+namespace relmap::client {
+
+bool IsRetryable(const grpc::Status& status, Idempotence idempotence) {
+  // gRPC's own text for a sync server whose ResourceQuota has no thread left
+  // (src/cpp/server/server_cc.cc). relmap's own RESOURCE_EXHAUSTED answers
+  // (oversized clouds, too many sessions) carry other messages and are final.
+  constexpr char kThreadpoolExhausted[] = "Server Threadpool Exhausted";
+  if (status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED &&
+      status.error_message() == kThreadpoolExhausted) {
+    return true;
+  }
+  return status.error_code() == grpc::StatusCode::UNAVAILABLE &&
+         idempotence == Idempotence::kIdempotent;
+}
+
+std::chrono::milliseconds BackoffBefore(int attempt, const RetryPolicy& policy,
+                                        double unit_random) {
+  const int doublings = std::clamp(attempt - 2, 0, 30);
+  const double base = std::min(
+      static_cast<double>(policy.initial_backoff.count()) * static_cast<double>(1ull << doublings),
+      static_cast<double>(policy.max_backoff.count()));
+  return std::chrono::milliseconds(static_cast<long long>(base * (0.5 + unit_random)));
+}
+
+}  // namespace relmap::client
