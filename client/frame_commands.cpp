@@ -11,7 +11,6 @@ namespace {
 // same decoder as the server so that the point labels line up.
 void WriteRenderings(const CommandLine& args, const std::string& pcd_bytes,
                      const v1::ComputeMapsResponse& maps) {
-  if (!args.Has("png") && !args.Has("choice-png") && !args.Has("pcd")) return;
   const StatusOr<perception::Cloud> cloud = perception::DecodePcd(pcd_bytes);
   if (!cloud.ok()) tools::ExitWithError("relmap", cloud.status().message());
   const auto check = [](const Status& written) {
@@ -31,10 +30,13 @@ int RunMaps(const CommandLine& args) {
   const SessionHandle session = SessionFrom(args, 0);
   const std::string pcd = ReadFileOrExit(args.Positional(1, "cloud.pcd"));
   const std::unique_ptr<RelevanceClient> client = ClientFrom(args);
+  // The labels of the points (one per pixel) serve the renderings, not the terminal.
+  const bool render = args.Has("png") || args.Has("choice-png") || args.Has("pcd");
   v1::ComputeMapsResponse maps;
-  const grpc::Status status = client->ComputeMaps(session, PcdCloud(pcd), &maps);
-  if (status.ok()) WriteRenderings(args, pcd, maps);
-  maps.clear_point_labels();  // one per pixel: for the renderings, not for a terminal
+  const grpc::Status status = client->ComputeMaps(
+      session, PcdCloud(pcd), &maps, render ? PointLabels::kInclude : PointLabels::kOmit);
+  if (status.ok() && render) WriteRenderings(args, pcd, maps);
+  maps.clear_point_labels();
   return PrintAnswer(status, maps);
 }
 

@@ -67,7 +67,8 @@ StatusOr<std::vector<image::ColouredPoint>> ColourPoints(const perception::Cloud
                                                        ? RelevanceColour(s.relevance())
                                                        : ChoiceColour(s.choice(), max_choice);
   }
-  const auto target = static_cast<std::int32_t>(maps.target_supervoxel_id());
+  const std::int32_t target =
+      maps.has_target_supervoxel_id() ? static_cast<std::int32_t>(maps.target_supervoxel_id()) : -1;
   std::vector<image::ColouredPoint> points(cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const perception::CloudPoint p = cloud.point(i);
@@ -79,9 +80,7 @@ StatusOr<std::vector<image::ColouredPoint>> ColourPoints(const perception::Cloud
         return InvalidArgumentError("point " + std::to_string(i) + " has supervoxel " +
                                     std::to_string(label) + ", which the maps do not list");
       }
-      colour = label == target && !maps.supervoxels().empty() && OnTargetBorder(cloud, labels, i)
-                   ? kTargetOutline
-                   : it->second;
+      colour = label == target && OnTargetBorder(cloud, labels, i) ? kTargetOutline : it->second;
     } else if (std::isfinite(p.x)) {
       colour = Unlabelled(p);
     }

@@ -113,7 +113,22 @@ grpc::Status RelevanceClient::GetSession(const SessionHandle& session,
 }
 
 grpc::Status RelevanceClient::ListSessions(v1::ListSessionsResponse* response) {
-  return Invoke(&v1::RelevanceService::Stub::ListSessions, v1::ListSessionsRequest{}, response,
+  response->Clear();
+  v1::ListSessionsRequest request;
+  do {
+    v1::ListSessionsResponse page;
+    if (grpc::Status status = ListSessionsPage(request, &page); !status.ok()) return status;
+    for (v1::GetSessionResponse& session : *page.mutable_sessions()) {
+      *response->add_sessions() = std::move(session);
+    }
+    request.set_page_token(page.next_page_token());
+  } while (!request.page_token().empty());
+  return grpc::Status::OK;
+}
+
+grpc::Status RelevanceClient::ListSessionsPage(const v1::ListSessionsRequest& request,
+                                               v1::ListSessionsResponse* response) {
+  return Invoke(&v1::RelevanceService::Stub::ListSessions, request, response,
                 Idempotence::kIdempotent, AdminMetadata());
 }
 
@@ -129,10 +144,12 @@ grpc::Status RelevanceClient::DeleteSession(const SessionHandle& session) {
 }
 
 grpc::Status RelevanceClient::ComputeMaps(const SessionHandle& session, const v1::Cloud& cloud,
-                                          v1::ComputeMapsResponse* response) {
+                                          v1::ComputeMapsResponse* response,
+                                          PointLabels point_labels) {
   v1::ComputeMapsRequest request;
   request.set_session_id(session.id);
   *request.mutable_cloud() = cloud;
+  request.set_omit_point_labels(point_labels == PointLabels::kOmit);
   // A repeat would draw another target and cache another frame.
   return Invoke(&v1::RelevanceService::Stub::ComputeMaps, request, response,
                 Idempotence::kNotIdempotent, SessionMetadata(session));

@@ -20,6 +20,10 @@
 
 namespace relmap::client {
 
+// Whether ComputeMaps answers with the label of every point (for renderings) or
+// only with the supervoxels and the target (a third of the bytes for a Kinect frame).
+enum class PointLabels { kInclude, kOmit };
+
 // A session as the client holds it.
 struct SessionHandle {
   std::string id;
@@ -35,10 +39,15 @@ class RelevanceClient {
   grpc::Status CreateSession(const v1::SessionConfig& config, SessionHandle* session,
                              v1::CreateSessionResponse* response = nullptr);
   grpc::Status GetSession(const SessionHandle& session, v1::GetSessionResponse* response);
+  // Every session, following the pages; the answer has no next_page_token.
   grpc::Status ListSessions(v1::ListSessionsResponse* response);
+  // One page, as the request asks.
+  grpc::Status ListSessionsPage(const v1::ListSessionsRequest& request,
+                                v1::ListSessionsResponse* response);
   grpc::Status DeleteSession(const SessionHandle& session);
   grpc::Status ComputeMaps(const SessionHandle& session, const v1::Cloud& cloud,
-                           v1::ComputeMapsResponse* response);
+                           v1::ComputeMapsResponse* response,
+                           PointLabels point_labels = PointLabels::kInclude);
   // PostOutcome and AddSamples are deduplicated by the server on `request_id`; an
   // empty one is replaced by a fresh random id, so that these calls are always safe
   // to retry. Pass your own to make a repeat after a client crash harmless too.

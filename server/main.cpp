@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "grpc/health/v1/health.pb.h"
 #include "service/metrics_http.h"
 #include "service/relevance_service.h"
 #include "service/session_restore.h"
@@ -40,7 +41,7 @@ constexpr std::string_view kUsage =
     "                     [--max-points 1228800] [--port-file PATH] [--data-dir DIR]\n"
     "                     [--admin-key-file PATH] [--tls-cert FILE --tls-key FILE]\n"
     "                     [--max-threads 16] [--metrics-listen 127.0.0.1:9464]\n"
-    "                     [--metrics-port-file PATH]\n"
+    "                     [--metrics-port-file PATH] [--frames-per-session 8]\n"
     "  --listen      address to serve on; port 0 picks a free port\n"
     "  --port-file   write the port actually bound there (for tests and scripts)\n"
     "  --data-dir    keep sessions and samples in DIR/relmap.sqlite (WAL) and restore them\n"
@@ -54,6 +55,8 @@ constexpr std::string_view kUsage =
     "                session, so a restart relearns at most N (default 500; 0 never)\n"
     "  --evict-idle-seconds  with --data-dir: drop sessions unused this long from memory;\n"
     "                they are loaded again on their next call (default 1800; 0 never)\n"
+    "  --frames-per-session  frames each session keeps for PostOutcome; an outcome on an\n"
+    "                older one gets FAILED_PRECONDITION (default 8)\n"
     "  --max-features-per-request  feature vectors in one ClassifyFeatures, AddSamples or\n"
     "                ImportSession (default 100000; more → RESOURCE_EXHAUSTED)\n"
     "  --config FILE  settings as lines 'name value' (the flag names without --)\n"
@@ -74,6 +77,7 @@ struct Options {
   std::size_t snapshot_every = 500;
   long long evict_idle_seconds = 1800;
   std::size_t max_features_per_request = 100000;
+  std::size_t frames_per_session = 8;
   std::string metrics_listen;
   std::string metrics_port_file;
 };
@@ -89,12 +93,22 @@ std::string ReadFileOrExit(const std::string& path) {
 
 // The flags that take a value; each can also come from a config file (a line
 // "name value") or the environment (RELMAP_NAME, dashes as underscores).
-constexpr std::string_view kSettings[] = {
-    "listen",         "max-message-mb", "max-sessions",
-    "max-points",     "port-file",      "data-dir",
-    "tls-cert",       "tls-key",        "evict-idle-seconds",
-    "snapshot-every", "metrics-listen", "metrics-port-file",
-    "max-threads",    "admin-key-file", "max-features-per-request"};
+constexpr std::string_view kSettings[] = {"listen",
+                                          "max-message-mb",
+                                          "max-sessions",
+                                          "max-points",
+                                          "port-file",
+                                          "data-dir",
+                                          "tls-cert",
+                                          "tls-key",
+                                          "evict-idle-seconds",
+                                          "snapshot-every",
+                                          "metrics-listen",
+                                          "metrics-port-file",
+                                          "max-threads",
+                                          "admin-key-file",
+                                          "max-features-per-request",
+                                          "frames-per-session"};
 
 void Apply(Options& options, std::string_view name, const std::string& value) {
   using relmap::tools::ExitWithError;
@@ -120,6 +134,8 @@ void Apply(Options& options, std::string_view name, const std::string& value) {
     options.tls_key = value;
   } else if (name == "evict-idle-seconds") {
     options.evict_idle_seconds = static_cast<long long>(number());
+  } else if (name == "frames-per-session") {
+    options.frames_per_session = static_cast<std::size_t>(number());
   } else if (name == "snapshot-every") {
     options.snapshot_every = static_cast<std::size_t>(number());
   } else if (name == "metrics-listen") {
@@ -193,7 +209,7 @@ Options ParseArguments(int argc, char** argv) {
   }
   if (options.max_threads < 2) ExitWithError("relmap-server", "--max-threads must be at least 2");
   if (options.max_message_mb < 1 || options.max_sessions < 1 || options.max_points < 1 ||
-      options.max_features_per_request < 1) {
+      options.max_features_per_request < 1 || options.frames_per_session < 1) {
     ExitWithError("relmap-server", "limits must be positive");
   }
   return options;
@@ -229,7 +245,8 @@ int main(int argc, char** argv) {
     spdlog::warn("no --data-dir: sessions live in memory only and are lost at exit");
   }
   relmap::session::SessionRegistry registry(options.max_sessions, store.get());
-  registry.set_snapshot_every(options.snapshot_every);
+  registry.set_policy(
+      {.snapshot_every = options.snapshot_every, .frame_cache = options.frames_per_session});
   if (store) {
     // Stored sessions come back into memory on their first call.
     registry.set_loader(
@@ -243,6 +260,9 @@ int main(int argc, char** argv) {
       options.admin_key.empty() ? std::string() : relmap::session::Sha256Hex(options.admin_key));
 
   grpc::EnableDefaultHealthCheckService(true);
+  // Links health.proto's descriptors into the generated pool that reflection reads
+  // (gRPC's own health service does not register them, grpc/grpc#36665).
+  (void)grpc::health::v1::HealthCheckRequest::descriptor();
   // Without this call Debian's --as-needed link silently drops reflection.
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;

@@ -162,11 +162,21 @@ grpc::Status RelevanceService::GetSession(grpc::ServerContext* context,
 }
 
 grpc::Status RelevanceService::ListSessions(grpc::ServerContext* context,
-                                            const v1::ListSessionsRequest*,
+                                            const v1::ListSessionsRequest* request,
                                             v1::ListSessionsResponse* response) {
   return Logged(metrics_, "ListSessions", "", [&] {
     if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
-    for (const auto& session : registry_.List()) {
+    constexpr std::uint32_t kDefaultPageSize = 100, kMaxPageSize = 1000;
+    if (request->page_size() > kMaxPageSize) {
+      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                          "page_size is at most " + std::to_string(kMaxPageSize) + ", got " +
+                              std::to_string(request->page_size()));
+    }
+    const std::uint32_t page_size =
+        request->page_size() == 0 ? kDefaultPageSize : request->page_size();
+    const session::SessionRegistry::Page page = registry_.List(request->page_token(), page_size);
+    if (page.more) response->set_next_page_token(page.sessions.back()->id());
+    for (const auto& session : page.sessions) {
       v1::GetSessionResponse* entry = response->add_sessions();
       entry->set_session_id(session->id());
       *entry->mutable_config() = ProtoFromSettings(session->settings());
@@ -219,8 +229,10 @@ grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
     }
     if (maps.target >= 0)
       response->set_target_supervoxel_id(static_cast<std::uint32_t>(maps.target));
-    response->mutable_point_labels()->Add(frame.segmentation.point_labels.begin(),
-                                          frame.segmentation.point_labels.end());
+    if (!request->omit_point_labels()) {
+      response->mutable_point_labels()->Add(frame.segmentation.point_labels.begin(),
+                                            frame.segmentation.point_labels.end());
+    }
     response->set_unusable_supervoxels(static_cast<std::uint32_t>(maps.unusable_rows));
     v1::StageTimings* timings = response->mutable_timings();
     timings->set_decode_ms(decode_ms);

@@ -39,6 +39,8 @@ StatusOr<std::shared_ptr<session::Session>> LoadStoredSession(session::SessionSt
   }
   auto samples = store.LoadSamples(id);
   if (!samples.ok()) return samples.status();
+  (*loaded)->RestoreCounters(static_cast<std::uint64_t>(record->counters.frames_computed),
+                             static_cast<std::uint64_t>(record->counters.interactions));
   if (Status status = (*loaded)->Replay(*samples); !status.ok()) return status;
   spdlog::info(
       "restored session={} samples={} (snapshot of {}) in {:.1f} ms", id, samples->size(),

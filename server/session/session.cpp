@@ -69,11 +69,18 @@ StatusOr<MappedFrame> Session::ComputeMaps(perception::Cloud cloud, std::int64_t
       exploration::ComputeFrameMaps(model_, mapped.frame->features.values, settings_.exploration,
                                     static_cast<int>(interactions_), &random_);
   mapped.maps_ms = MillisecondsSince(start);
-  if (mapped.maps.target >= 0) ++interactions_;
+  const bool drew = mapped.maps.target >= 0;
+  if (store_ != nullptr) {
+    // Committed before the frame is answered: a restart continues its ids and draws.
+    if (Status stored = store_->IncrementCounters(id_, {1, drew ? 1 : 0}); !stored.ok()) {
+      return stored;
+    }
+  }
+  if (drew) ++interactions_;
   ++frames_;
   last_used_unix_ms_ = now_unix_ms;
   frames_cache_.push_back(mapped);
-  if (frames_cache_.size() > settings_.frame_cache) frames_cache_.pop_front();
+  if (frames_cache_.size() > policy_.frame_cache) frames_cache_.pop_front();
   return mapped;
 }
 
@@ -86,7 +93,7 @@ StatusOr<std::shared_ptr<const perception::Frame>> Session::FrameForOutcomeLocke
   if (mapped == nullptr) {
     return FailedPreconditionError("frame " + std::to_string(frame_id) + " of session " + id_ +
                                    " is unknown or no longer cached (the cache keeps the last " +
-                                   std::to_string(settings_.frame_cache) + " frames)");
+                                   std::to_string(policy_.frame_cache) + " frames)");
   }
   const auto& features = mapped->frame->features.values;
   if (supervoxel_id >= features.rows()) {
@@ -239,7 +246,7 @@ Status Session::PersistAndLearn(const std::string& request_id, const Eigen::Vect
   auto added = model_.Add(x, label);
   if (!added.ok()) return added.status();
   const auto learned = static_cast<std::size_t>(model_.dataset().size());
-  if (store_ != nullptr && snapshot_every_ > 0 && learned % snapshot_every_ == 0) {
+  if (store_ != nullptr && policy_.snapshot_every > 0 && learned % policy_.snapshot_every == 0) {
     // A failed snapshot loses nothing (the samples are the record): log-worthy,
     // not an error of this call.
     (void)store_->SaveSnapshot(id_, model_.Snapshot(), static_cast<std::int64_t>(learned));
@@ -247,9 +254,10 @@ Status Session::PersistAndLearn(const std::string& request_id, const Eigen::Vect
   return OkStatus();
 }
 
-void Session::set_snapshot_every(std::size_t samples) {
+void Session::set_policy(const SessionPolicy& policy) {
   std::lock_guard lock(mutex_);
-  snapshot_every_ = samples;
+  policy_ = policy;
+  while (frames_cache_.size() > policy_.frame_cache) frames_cache_.pop_front();
 }
 
 Status Session::RestoreModel(const cmm::CmmSnapshot& snapshot) {
@@ -274,7 +282,26 @@ Status Session::Replay(const std::vector<StoredSample>& samples) {
                            " cannot be relearned: " + added.status().message());
     }
   }
+  // A retried PostOutcome whose first answer was lost in the restart is answered
+  // again, not refused for want of its (unpersisted) frame. AddSamples batches are
+  // stored per sample ("<id>/<i>") and deduplicated by the store instead.
+  const Outcome answer{StatsLocked(), 0, std::nullopt};
+  const std::size_t first =
+      samples.size() > kRememberedAnswers ? samples.size() - kRememberedAnswers : 0;
+  for (std::size_t i = first; i < samples.size(); ++i) {
+    Outcome outcome = answer;
+    outcome.label = samples[i].label;
+    RememberLocked(samples[i].request_id, outcome);
+  }
   return OkStatus();
+}
+
+void Session::RestoreCounters(std::uint64_t frames, std::uint64_t interactions) {
+  std::lock_guard lock(mutex_);
+  frames_ = frames;
+  next_frame_id_ = frames + 1;
+  interactions_ = interactions;
+  for (std::uint64_t i = 0; i < interactions; ++i) (void)random_.NextBits();
 }
 
 void Session::RememberLocked(const std::string& request_id, const Outcome& outcome) {
@@ -309,6 +336,12 @@ StatusOr<SessionStats> Session::ImportState(const SessionState& state, std::int6
     if (!stats.ok()) return stats.status();
   }
   std::lock_guard lock(mutex_);
+  // The store keeps the draw count, from which a restart rebuilds the stream: exact for
+  // a state exported by relmap (its stream is the seed's, advanced one word per draw).
+  if (store_ != nullptr && state.interactions > 0) {
+    const SessionCounters imported{0, static_cast<std::int64_t>(state.interactions)};
+    if (Status stored = store_->IncrementCounters(id_, imported); !stored.ok()) return stored;
+  }
   random_ = cmm::Random::FromState(state.target_random);
   interactions_ = state.interactions;
   return StatsLocked();

@@ -74,9 +74,14 @@ class Session {
   Status Replay(const std::vector<StoredSample>& samples);
   // Starts an empty session from a stored model snapshot (bit for bit).
   Status RestoreModel(const cmm::CmmSnapshot& snapshot);
-  // With a store: save a model snapshot every `samples` learned samples, so that a
-  // restart replays at most that many (0: never).
-  void set_snapshot_every(std::size_t samples);
+  // After a restart or a reload, from the stored counters: frame ids continue after
+  // the `frames` already issued (an outcome for a frame of the previous life is never
+  // matched with a new frame of the same id), and the target-draw stream skips the
+  // `interactions` draws already made, so that the session draws as if it had never
+  // stopped (each draw takes one 64-bit word of the stream).
+  void RestoreCounters(std::uint64_t frames, std::uint64_t interactions);
+  // The server's snapshot cadence and frame cache for this session.
+  void set_policy(const SessionPolicy& policy);
 
   const std::string& id() const { return id_; }
   const std::string& token_hash() const { return token_hash_; }
@@ -148,7 +153,7 @@ class Session {
   std::uint64_t next_frame_id_ = 1;
   std::uint64_t frames_ = 0;
   std::uint64_t interactions_ = 0;
-  std::size_t snapshot_every_ = 0;
+  SessionPolicy policy_;
   std::deque<MappedFrame> frames_cache_;
   // Remembers the answer under `request_id`, forgetting the oldest beyond
   // kRememberedAnswers (with a store, older retries are still not learned twice:

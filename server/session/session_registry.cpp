@@ -17,7 +17,7 @@ StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings setti
       Session::Create(RandomHex(16), Sha256Hex(token), std::move(settings), now_unix_ms, store_);
   if (!session.ok()) return session.status();
   std::shared_ptr<Session> shared = std::move(session).value();
-  shared->set_snapshot_every(snapshot_every_);
+  shared->set_policy(policy_);
   std::unique_lock lock(mutex_);
   if (sessions_.size() >= max_sessions_) {
     return ResourceExhaustedError("the server holds its maximum of " +
@@ -53,7 +53,7 @@ StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) 
       return NotFoundError("no session '" + id + "'");
     return loaded.status();
   }
-  (*loaded)->set_snapshot_every(snapshot_every_);
+  (*loaded)->set_policy(policy_);
   std::unique_lock lock(mutex_);
   sessions_.emplace(id, *loaded);
   return loaded;
@@ -66,19 +66,27 @@ std::vector<std::shared_ptr<Session>> SessionRegistry::Resident() const {
   return out;
 }
 
-std::vector<std::shared_ptr<Session>> SessionRegistry::List() {
-  std::vector<std::shared_ptr<Session>> out;
+SessionRegistry::Page SessionRegistry::List(const std::string& after_id, std::size_t limit) {
+  std::vector<std::string> ids;
   if (store_ != nullptr && loader_) {
     if (auto stored = store_->ListSessions(); stored.ok()) {
-      for (const SessionSummary& summary : *stored) {
-        if (auto session = Find(summary.id); session.ok()) out.push_back(*session);
-      }
-      return out;
+      for (const SessionSummary& summary : *stored) ids.push_back(summary.id);
     }
   }
-  out = Resident();
-  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a->id() < b->id(); });
-  return out;
+  if (ids.empty()) {
+    for (const auto& session : Resident()) ids.push_back(session->id());
+  }
+  std::sort(ids.begin(), ids.end());
+  Page page;
+  for (auto it = std::upper_bound(ids.begin(), ids.end(), after_id); it != ids.end(); ++it) {
+    if (page.sessions.size() == limit) {
+      page.more = true;
+      break;
+    }
+    // A session deleted since the ids were read is skipped.
+    if (auto session = Find(*it); session.ok()) page.sessions.push_back(*session);
+  }
+  return page;
 }
 
 std::vector<std::string> SessionRegistry::EvictIdle(std::int64_t cutoff_unix_ms) {

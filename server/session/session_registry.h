@@ -42,20 +42,26 @@ class SessionRegistry {
   // are loaded again on their next call.
   std::vector<std::string> EvictIdle(std::int64_t cutoff_unix_ms);
   SessionStore* store() const { return store_; }
-  // Snapshot policy given to every session created or adopted from now on.
-  void set_snapshot_every(std::size_t samples) { snapshot_every_ = samples; }
+  // The policy given to every session created or adopted from now on.
+  void set_policy(const SessionPolicy& policy) { policy_ = policy; }
   // The session, loaded with the loader if it is not in memory. NOT_FOUND for an
   // unknown id.
   StatusOr<std::shared_ptr<Session>> Find(const std::string& id);
-  // Every session (loading evicted ones), ordered by id.
-  std::vector<std::shared_ptr<Session>> List();
+  // Up to `limit` sessions with ids after `after_id` (all when empty), ordered by id,
+  // loading evicted ones; `more` tells whether further sessions follow. Only the page
+  // is loaded, so that listing a large store does not pull every session into memory.
+  struct Page {
+    std::vector<std::shared_ptr<Session>> sessions;
+    bool more = false;
+  };
+  Page List(const std::string& after_id, std::size_t limit);
   // NOT_FOUND for an unknown id.
   Status Delete(const std::string& id);
 
  private:
   const std::size_t max_sessions_;
   SessionStore* const store_;
-  std::size_t snapshot_every_ = 0;
+  SessionPolicy policy_;
   Loader loader_;
   std::mutex load_mutex_;  // one load at a time, so an id is never loaded twice
   mutable std::shared_mutex mutex_;

@@ -12,8 +12,6 @@ Status Validate(const SessionSettings& settings) {
     return InvalidArgumentError("feature dimension must lie in [1, 4096], got " +
                                 std::to_string(settings.feature_dimension));
   }
-  if (settings.frame_cache < 1)
-    return InvalidArgumentError("the frame cache needs at least 1 frame");
   return OkStatus();
 }
 

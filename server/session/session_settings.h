@@ -18,7 +18,15 @@ struct SessionSettings {
   exploration::ExplorationConfig exploration;
   perception::PerceptionConfig perception;
   int feature_dimension = kCloudFeatureDimension;
-  // Frames kept for PostOutcome; older ones are evicted first.
+};
+
+// What the server decides for every session, whatever its config: how often the model
+// is snapshotted and how many frames are kept for PostOutcome.
+struct SessionPolicy {
+  // With a store: a model snapshot every this many learned samples, so that a restart
+  // replays at most that many (0: never).
+  std::size_t snapshot_every = 0;
+  // Frames kept for PostOutcome (at least 1); older ones are evicted first.
   std::size_t frame_cache = 8;
 };
 
