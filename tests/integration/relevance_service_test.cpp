@@ -19,35 +19,14 @@
 #include <thread>
 
 #include "integration/server_process.h"
-#include "perception/synthetic_tabletop.h"
+#include "integration/test_support.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
 
 namespace relmap {
 namespace {
 
+using testing::PackedTabletop;
 using v1::RelevanceService;
-
-// A synthetic tabletop (320×240 by default) in the packed layout of the API.
-v1::Cloud PackedTabletop(std::uint32_t width = 320, std::uint32_t height = 240) {
-  perception::SyntheticTabletopOptions options;
-  options.width = width;
-  options.height = height;
-  const perception::SyntheticTabletop scene = perception::MakeSyntheticTabletop(options);
-  std::string bytes;
-  for (const perception::CloudPoint& p : scene.cloud.points()) {
-    char record[16];
-    std::memcpy(record, &p.x, 4), std::memcpy(record + 4, &p.y, 4),
-        std::memcpy(record + 8, &p.z, 4);
-    record[12] = static_cast<char>(p.r), record[13] = static_cast<char>(p.g);
-    record[14] = static_cast<char>(p.b), record[15] = static_cast<char>(p.a);
-    bytes.append(record, 16);
-  }
-  v1::Cloud cloud;
-  cloud.mutable_packed()->set_width(options.width);
-  cloud.mutable_packed()->set_height(options.height);
-  cloud.mutable_packed()->set_points(bytes);
-  return cloud;
-}
 
 class RelevanceServer : public ::testing::Test {
  protected:

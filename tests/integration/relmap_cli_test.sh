@@ -6,7 +6,7 @@ server=$1
 cli=$2
 cloud=$3
 dir=$(mktemp -d)
-"$server" --listen 127.0.0.1:0 --port-file "$dir/port" 2>"$dir/server.log" &
+"$server" --listen 127.0.0.1:0 --port-file "$dir/port" --frames-per-session 2 2>"$dir/server.log" &
 server_pid=$!
 trap 'kill $server_pid 2>/dev/null; wait $server_pid 2>/dev/null; rm -rf "$dir"' EXIT
 for _ in $(seq 100); do [ -s "$dir/port" ] && break; sleep 0.05; done
@@ -70,6 +70,8 @@ check outcome-still grep -q '"nonMoveableSamples":"1"' <<<"$("$cli" outcome "$se
 check after-cloud-unchanged grep -q '"label":"LABEL_NOT_MOVEABLE"' <<<"$("$cli" outcome "$session" 1 "$target" --after-cloud "$cloud" --request-id r2)"
 check stale-frame-exit-1 test "$(exit_code "$cli" outcome "$session" 99 0 moved)" = 1
 check stale-frame-message grep -q 'code 9' <<<"$("$cli" outcome "$session" 99 0 moved 2>&1)"
+"$cli" maps "$session" "$cloud" >/dev/null && "$cli" maps "$session" "$cloud" >/dev/null
+check evicted-frame grep -q 'keeps the last 2 frames' <<<"$("$cli" outcome "$session" 1 "$target" moved 2>&1)"
 check bad-outcome-exit-2 test "$(exit_code "$cli" outcome "$session" 1 "$target" maybe)" = 2
 
 check delete test "$(exit_code "$cli" session delete "$session")" = 0
