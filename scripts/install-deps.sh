@@ -12,6 +12,7 @@ packages=(
   libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libssl-dev zlib1g-dev openssl
+  python3-grpcio python3-protobuf  # scripts/grpcurl-lite
 )
 
 missing=()
