@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
-# The main job, for what exists so far (the classifier and the perception
-# layer; the server and the simulator come with later issues): builds, then
+# The main job, for what exists so far (classifier, perception, server and client;
+# the simulated pusher comes with the sim_backend issue): builds, then
 #  1. streams a seeded 48-d non-convex problem (XOR blobs) through relmap-cmm
 #     for each classifier configuration, prints the learning curves and plots
 #     them to out/demo/learning_curves.png;
 #  2. lets the choice map pick the samples (--active) and compares;
 #  3. segments a real Kinect cloud (or a synthetic one) with relmap-perception
-#     and renders the supervoxels to PNG.
+#     and renders the supervoxels to PNG;
+#  4. starts relmap-server on a loopback port and, through the relmap CLI, asks
+#     for the maps of the real cloud (PNG renderings), posts the outcome of the
+#     drawn push as the after-push cloud (the change detector labels it), and
+#     streams the XOR training set into a feature session with a progress bar.
 # Everything lands in out/demo/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -52,4 +56,30 @@ cloud=../shared/data/real/table_scene_mug_stereo_textured.pcd
 [ -f "$cloud" ] || cloud=synthetic:640x480
 echo "== relmap-perception on $cloud"
 build/server/perception/tools/relmap-perception "$cloud" --repeat 1 --png "$out/segmentation.png" | tee "$out/perception.json"
-echo "reports, learning curves and segmentation.png are in $out/"
+echo "== relmap-server and the relmap CLI"
+server_dir=$(mktemp -d)
+build/server/relmap-server --listen 127.0.0.1:0 --port-file "$server_dir/port" \
+  --data-dir "$server_dir/data" 2>"$out/server.log" &
+server_pid=$!
+trap 'kill $server_pid 2>/dev/null; wait $server_pid 2>/dev/null; rm -rf "$server_dir"' EXIT
+for _ in $(seq 200); do [ -s "$server_dir/port" ] && break; sleep 0.05; done
+export RELMAP_SERVER=127.0.0.1:$(cat "$server_dir/port")
+relmap=build/client/relmap
+json_field() { /usr/bin/python3 -c "import json,sys; print(json.load(sys.stdin)['$1'])"; }
+
+created=$("$relmap" session create --seed "$seed")
+session=$(json_field sessionId <<<"$created")
+export RELMAP_TOKEN=$(json_field sessionToken <<<"$created")
+if [ "${cloud#synthetic:}" = "$cloud" ]; then
+  "$relmap" maps "$session" "$cloud" --png "$out/relevance.png" --choice-png "$out/choice.png" \
+    --pcd "$out/relevance.pcd" >"$out/maps.json"
+  frame=$(json_field frameId <"$out/maps.json")
+  target=$(json_field targetSupervoxelId <"$out/maps.json")
+  echo "maps of frame $frame: $(grep -o '"id":' "$out/maps.json" | wc -l) supervoxels, target $target"
+  echo "outcome from the after-push cloud (the same scene: nothing moved):"
+  "$relmap" outcome "$session" "$frame" "$target" --after-cloud "$cloud" | tee "$out/outcome.json"
+fi
+features=$("$relmap" session create --seed "$seed" --feature-dimension 48 --variant corrected)
+export RELMAP_TOKEN=$(json_field sessionToken <<<"$features")
+"$relmap" stream "$(json_field sessionId <<<"$features")" "$out/train.csv" --batch 100 | tee "$out/stream.json"
+echo "reports, learning curves, segmentation.png, relevance.png and choice.png are in $out/"
