@@ -31,9 +31,9 @@ StatusOr<Cloud> MakeCloud(std::uint32_t width, std::uint32_t height, std::vector
     return InvalidArgumentError("cloud has width " + std::to_string(width) + " and height " +
                                 std::to_string(height) + ": both must be > 0");
   }
-  if (count > limits.max_points) {
-    return InvalidArgumentError("cloud has " + std::to_string(count) + " points, more than the " +
-                                std::to_string(limits.max_points) + " allowed");
+  if (count > limits.max_points) {  // a limit of the server, not a malformed cloud
+    return ResourceExhaustedError("cloud has " + std::to_string(count) + " points, more than the " +
+                                  std::to_string(limits.max_points) + " allowed");
   }
   if (static_cast<long long>(points.size()) != count) {
     return InvalidArgumentError("cloud declares " + std::to_string(width) + "x" +

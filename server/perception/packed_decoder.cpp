@@ -14,10 +14,10 @@ StatusOr<Cloud> DecodePacked(std::string_view bytes, std::uint32_t width, std::u
     return InvalidArgumentError("packed cloud: width and height must be > 0 (got " +
                                 std::to_string(width) + "x" + std::to_string(height) + ")");
   }
-  if (count > limits.max_points) {
-    return InvalidArgumentError("packed cloud: " + std::to_string(count) +
-                                " points declared, more than the " +
-                                std::to_string(limits.max_points) + " allowed");
+  if (count > limits.max_points) {  // a limit of the server, not a malformed cloud
+    return ResourceExhaustedError("packed cloud: " + std::to_string(count) +
+                                  " points declared, more than the " +
+                                  std::to_string(limits.max_points) + " allowed");
   }
   const long long expected = count * static_cast<long long>(kPackedPointBytes);
   if (static_cast<long long>(bytes.size()) != expected) {

@@ -118,9 +118,10 @@ StatusOr<PcdHeader> ParsePcdHeader(std::string_view bytes, const DecodeLimits& l
         return HeaderError(line_no, std::string(key) + " needs one non-negative integer");
       }
       if (value > static_cast<unsigned long long>(limits.max_points)) {
-        return HeaderError(line_no, std::string(key) + " " + std::to_string(value) +
-                                        " exceeds the limit of " +
-                                        std::to_string(limits.max_points) + " points");
+        return ResourceExhaustedError("PCD header line " + std::to_string(line_no) + ": " +
+                                      std::string(key) + " " + std::to_string(value) +
+                                      " exceeds the limit of " + std::to_string(limits.max_points) +
+                                      " points");
       }
       if (key == "WIDTH") h.width = static_cast<std::uint32_t>(value), have_width = true;
       if (key == "HEIGHT") h.height = static_cast<std::uint32_t>(value), have_height = true;
@@ -150,9 +151,9 @@ StatusOr<PcdHeader> ParsePcdHeader(std::string_view bytes, const DecodeLimits& l
   if (!have_height) h.height = 1;  // PCD v0.6 files may omit it: an unorganized cloud
   const unsigned long long product = static_cast<unsigned long long>(h.width) * h.height;
   if (product > static_cast<unsigned long long>(limits.max_points)) {
-    return InvalidArgumentError("PCD header: WIDTH x HEIGHT = " + std::to_string(product) +
-                                " exceeds the limit of " + std::to_string(limits.max_points) +
-                                " points");
+    return ResourceExhaustedError("PCD header: WIDTH x HEIGHT = " + std::to_string(product) +
+                                  " exceeds the limit of " + std::to_string(limits.max_points) +
+                                  " points");
   }
   if (have_points && declared_points != product) {
     return InvalidArgumentError("PCD header: POINTS " + std::to_string(declared_points) +

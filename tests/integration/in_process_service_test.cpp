@@ -589,8 +589,6 @@ TEST_F(Clouds, HoleOnlyEmptyOrMalformedCloudsAreInvalidArguments) {
       {"nan and inf only", mixed_holes, "no valid (finite) point"},
       {"0x0", Packed(0, 0, {}), "width and height must be > 0"},
       {"bytes of 10 points for 120x90", short_of_bytes, "need 172800 bytes (16 per point)"},
-      {"over the point limit", testing::PackedTabletop(kWidth + 1, kHeight),
-       "more than the 10800 allowed"},
       {"a point 1 km away", Packed(2, 1, {0, 0, 1, 0, 0, 1000}), "beyond the 100.000000 m"},
       {"three points", Packed(3, 1, {0, 0, 1, 0.01f, 0, 1, 0, 0.01f, 1}), "gave no supervoxel"},
       {"no encoding", v1::Cloud(), "carries no cloud"},
@@ -603,6 +601,16 @@ TEST_F(Clouds, HoleOnlyEmptyOrMalformedCloudsAreInvalidArguments) {
     EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
     EXPECT_THAT(status.error_message(), HasSubstr(c.message));
   }
+  EXPECT_EQ(Stats(session).frames(), 0u);
+}
+
+TEST_F(Clouds, MorePointsThanTheServerTakesAreResourceExhausted) {
+  const Session session = Create();
+  v1::ComputeMapsResponse response;
+  const grpc::Status status =
+      Maps(session, testing::PackedTabletop(kWidth + 1, kHeight), &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_THAT(status.error_message(), HasSubstr("more than the 10800 allowed"));
   EXPECT_EQ(Stats(session).frames(), 0u);
 }
 

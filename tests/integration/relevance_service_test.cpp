@@ -230,12 +230,17 @@ TEST_F(RelevanceServer, TokensAreRequiredAndChecked) {
 TEST_F(RelevanceServer, BadCloudsAreInvalidArguments) {
   const auto [id, token] = Create();
   v1::ComputeMapsResponse maps;
-  v1::Cloud garbage;
-  garbage.set_pcd(
-      "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
-      "WIDTH 1000000000\nHEIGHT 1\nPOINTS 1000000000\nDATA binary\n");
-  EXPECT_EQ(ComputeMaps(id, token, garbage, &maps).error_code(),
+  const std::string header =
+      "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  v1::Cloud truncated;
+  truncated.set_pcd(header + "WIDTH 1000\nHEIGHT 1\nPOINTS 1000\nDATA binary\n");
+  EXPECT_EQ(ComputeMaps(id, token, truncated, &maps).error_code(),
             grpc::StatusCode::INVALID_ARGUMENT);
+  // A header that claims a billion points is refused as over the server's limit, before
+  // any memory is set aside for them.
+  v1::Cloud huge;
+  huge.set_pcd(header + "WIDTH 1000000000\nHEIGHT 1\nPOINTS 1000000000\nDATA binary\n");
+  EXPECT_EQ(ComputeMaps(id, token, huge, &maps).error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   v1::Cloud holes = PackedTabletop();
   std::string points = holes.packed().points();
   const float nan = std::numeric_limits<float>::quiet_NaN();
