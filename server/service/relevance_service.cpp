@@ -1,6 +1,8 @@
 // The handlers: validation, authorisation, proto <-> session translation.
 #include "service/relevance_service.h"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 
 #include "service/call_log.h"
@@ -96,9 +98,15 @@ StatusOr<std::shared_ptr<session::Session>> RelevanceService::Authorised(
   if (id.empty()) return InvalidArgumentError("session_id is required");
   const auto& metadata = context.client_metadata();
   const auto header = metadata.find("authorization");
-  constexpr std::string_view kBearer = "Bearer ";
+  // The scheme's name is case-insensitive (RFC 7235 §2.1): "bearer" is a Bearer token.
+  constexpr std::string_view kBearer = "bearer ";
+  const auto is_bearer = [&](std::string_view value) {
+    return std::equal(kBearer.begin(), kBearer.end(), value.begin(), [](char want, char got) {
+      return want == std::tolower(static_cast<unsigned char>(got));
+    });
+  };
   if (header == metadata.end() || header->second.size() <= kBearer.size() ||
-      std::string_view(header->second.data(), kBearer.size()) != kBearer) {
+      !is_bearer(std::string_view(header->second.data(), kBearer.size()))) {
     return Status(StatusCode::kUnauthenticated,
                   "calls on a session need 'authorization: Bearer <session token>' metadata");
   }

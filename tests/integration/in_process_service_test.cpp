@@ -357,6 +357,17 @@ TEST_P(EverySessionCall, WithoutABearerTokenIsUnauthenticated) {
   }
 }
 
+TEST_P(EverySessionCall, TakesTheBearerSchemeInAnyCase) {
+  const Session session = Create();
+  for (const char* scheme : {"bearer ", "BEARER "}) {
+    grpc::ClientContext context;
+    context.AddMetadata("authorization", scheme + session.token);
+    const grpc::Status status = Call(context, session.id);
+    EXPECT_NE(status.error_code(), grpc::StatusCode::UNAUTHENTICATED) << scheme;
+    EXPECT_NE(status.error_code(), grpc::StatusCode::PERMISSION_DENIED) << scheme;
+  }
+}
+
 TEST_P(EverySessionCall, WithAnotherSessionsTokenIsPermissionDenied) {
   const Session mine = Create();
   const Session other = Create();
