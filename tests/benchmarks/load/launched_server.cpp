@@ -1,0 +1,114 @@
+// posix_spawn of the server with its output redirected, then a poll of its port file.
+#include "launched_server.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <thread>
+
+extern char** environ;
+
+namespace relmap::load {
+namespace {
+
+// A new directory $TMPDIR/relmap-load-XXXXXX (or under /tmp).
+StatusOr<std::string> MakeTemporaryDirectory() {
+  const char* base = std::getenv("TMPDIR");
+  std::string pattern =
+      std::string(base != nullptr && *base != '\0' ? base : "/tmp") + "/relmap-load-XXXXXX";
+  if (::mkdtemp(pattern.data()) == nullptr) {
+    return InternalError("cannot create a temporary directory like " + pattern);
+  }
+  return pattern;
+}
+
+}  // namespace
+
+StatusOr<std::unique_ptr<LaunchedServer>> LaunchedServer::Start(
+    const std::string& binary, bool memory_only, const std::vector<std::string>& extra_arguments) {
+  if (::access(binary.c_str(), X_OK) != 0) {
+    return NotFoundError("no executable server binary at " + binary + " (see --server-binary)");
+  }
+  StatusOr<std::string> directory = MakeTemporaryDirectory();
+  if (!directory.ok()) return directory.status();
+  const std::string port_file = *directory + "/port";
+  const std::string log_file = *directory + "/server.log";
+
+  std::vector<std::string> arguments = {binary, "--listen", "127.0.0.1:0", "--port-file",
+                                        port_file};
+  if (!memory_only) arguments.insert(arguments.end(), {"--data-dir", *directory + "/data"});
+  arguments.insert(arguments.end(), extra_arguments.begin(), extra_arguments.end());
+  std::vector<char*> argv;
+  for (std::string& argument : arguments) argv.push_back(argument.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_file.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  pid_t pid = -1;
+  const int spawned = ::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) {
+    std::filesystem::remove_all(*directory);
+    return InternalError("cannot start " + binary + ": error " + std::to_string(spawned));
+  }
+  std::unique_ptr<LaunchedServer> server(new LaunchedServer(*directory, pid));
+
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(15);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (std::ifstream in(port_file); in >> server->port_ && server->port_ > 0) return server;
+    int status = 0;
+    if (::waitpid(pid, &status, WNOHANG) == pid) {
+      server->pid_ = -1;
+      return Status(StatusCode::kUnavailable,
+                    "relmap-server exited at start-up; its log ends:\n" + server->LogTail(2000));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return Status(StatusCode::kUnavailable,
+                "relmap-server wrote no port within 15 s; its log ends:\n" + server->LogTail(2000));
+}
+
+LaunchedServer::~LaunchedServer() {
+  Stop();
+  std::error_code ignored;
+  std::filesystem::remove_all(directory_, ignored);
+}
+
+int LaunchedServer::Stop() {
+  if (pid_ <= 0) return -1;
+  // The server drains its calls for at most 10 s; past 15 s it is hung, and the
+  // benchmark must still end.
+  ::kill(pid_, SIGTERM);
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(15);
+  int status = 0;
+  while (::waitpid(pid_, &status, WNOHANG) == 0) {
+    if (std::chrono::steady_clock::now() >= give_up) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, &status, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  pid_ = -1;
+  return status;
+}
+
+std::string LaunchedServer::LogTail(std::size_t bytes) const {
+  std::ifstream in(directory_ + "/server.log", std::ios::binary);
+  const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return log.size() > bytes ? log.substr(log.size() - bytes) : log;
+}
+
+}  // namespace relmap::load
