@@ -1,0 +1,1 @@
+# relmap_sim_runner and relmap-sim: the experiment runner.

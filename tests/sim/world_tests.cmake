@@ -1,0 +1,1 @@
+# Tests of relmap_sim_world.
