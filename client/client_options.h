@@ -8,7 +8,9 @@
 namespace relmap::client {
 
 struct RetryPolicy {
-  // Attempts per call, the first one included (1 = never retry).
+  // Attempts per call, the first one included (1 = never retry). A busy server's
+  // answers with a pushback (it did nothing and says when to come back) do not
+  // count: those are repeated until the deadline.
   int max_attempts = 5;
   // Backoff before the second attempt; doubled each time up to `max_backoff`,
   // with ±50% jitter so that many robots do not retry in lockstep.

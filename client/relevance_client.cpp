@@ -2,6 +2,7 @@
 // the metadata and the retries.
 #include "relevance_client.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <random>
@@ -59,18 +60,19 @@ grpc::Status RelevanceClient::Invoke(Rpc<Request, Response> rpc, const Request& 
                                      Response* response, Idempotence idempotence,
                                      const Metadata& metadata) {
   const auto deadline = std::chrono::system_clock::now() + options_.deadline;
-  for (int attempt = 1;; ++attempt) {
+  int attempts = 0;  // pushbacks excepted: those are repeated until the deadline
+  for (int call = 1;; ++call) {
     grpc::ClientContext context;
     context.set_deadline(deadline);
     for (const auto& [key, value] : metadata) context.AddMetadata(key, value);
     const grpc::Status status = ((*stub_).*rpc)(&context, request, response);
-    if (status.ok() || attempt >= options_.retry.max_attempts ||
-        !IsRetryable(status, idempotence)) {
-      return status;
-    }
+    const std::optional<std::chrono::milliseconds> pushback = PushbackOf(context);
+    if (status.ok() || !IsRetryable(status, idempotence, pushback.has_value())) return status;
+    if (!pushback && ++attempts >= options_.retry.max_attempts) return status;
     const std::chrono::milliseconds wait =
-        BackoffBefore(attempt + 1, options_.retry,
-                      std::uniform_real_distribution<double>(0.0, 1.0)(ThreadRandom()));
+        std::max(pushback.value_or(std::chrono::milliseconds(0)),
+                 BackoffBefore(call + 1, options_.retry,
+                               std::uniform_real_distribution<double>(0.0, 1.0)(ThreadRandom())));
     if (std::chrono::system_clock::now() + wait >= deadline) return status;
     std::this_thread::sleep_for(wait);
     ++retries_;

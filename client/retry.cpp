@@ -5,17 +5,29 @@
 
 namespace relmap::client {
 
-bool IsRetryable(const grpc::Status& status, Idempotence idempotence) {
+bool IsRetryable(const grpc::Status& status, Idempotence idempotence, bool pushback) {
   // gRPC's own text for a sync server whose ResourceQuota has no thread left
   // (src/cpp/server/server_cc.cc). relmap's own RESOURCE_EXHAUSTED answers
   // (oversized clouds, too many sessions) carry other messages and are final.
   constexpr char kThreadpoolExhausted[] = "Server Threadpool Exhausted";
   if (status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED &&
-      status.error_message() == kThreadpoolExhausted) {
+      (pushback || status.error_message() == kThreadpoolExhausted)) {
     return true;
   }
   return status.error_code() == grpc::StatusCode::UNAVAILABLE &&
          idempotence == Idempotence::kIdempotent;
+}
+
+std::optional<std::chrono::milliseconds> PushbackOf(const grpc::ClientContext& context) {
+  const auto& trailers = context.GetServerTrailingMetadata();
+  const auto it = trailers.find("grpc-retry-pushback-ms");
+  if (it == trailers.end()) return std::nullopt;
+  long long milliseconds = 0;
+  for (const char c : it->second) {
+    if (c < '0' || c > '9' || milliseconds > 3'600'000) return std::nullopt;  // not a pushback
+    milliseconds = milliseconds * 10 + (c - '0');
+  }
+  return std::chrono::milliseconds(milliseconds);
 }
 
 std::chrono::milliseconds BackoffBefore(int attempt, const RetryPolicy& policy,

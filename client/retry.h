@@ -4,6 +4,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include <chrono>
+#include <optional>
 
 #include "client_options.h"
 
@@ -13,12 +14,17 @@ namespace relmap::client {
 // reads, and writes that carry a request id the server deduplicates on.
 enum class Idempotence { kIdempotent, kNotIdempotent };
 
-// A call may be retried when the server provably did not run it (its worker pool
-// was full: gRPC answers RESOURCE_EXHAUSTED "Server Threadpool Exhausted" before
-// any handler runs), or, for idempotent calls only, when the connection failed
+// A call may be retried when the server provably did not run it: its worker pool
+// was full (gRPC answers RESOURCE_EXHAUSTED "Server Threadpool Exhausted" before any
+// handler runs), or it answered RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms
+// trailer (`pushback`: relmap-server's frame admission, which turns a call away
+// before doing anything). For idempotent calls only, also when the connection failed
 // (UNAVAILABLE) and the call may or may not have run. Every other status is the
 // server's answer and is returned as it is.
-bool IsRetryable(const grpc::Status& status, Idempotence idempotence);
+bool IsRetryable(const grpc::Status& status, Idempotence idempotence, bool pushback = false);
+
+// The server's grpc-retry-pushback-ms trailer, if `context`'s call ended with one.
+std::optional<std::chrono::milliseconds> PushbackOf(const grpc::ClientContext& context);
 
 // The wait before attempt `attempt` (2, 3, ...): initial_backoff · 2^(attempt−2),
 // capped at max_backoff, times the jitter factor 0.5 + `unit_random` (a draw in [0, 1)).

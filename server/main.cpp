@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "grpc/health/v1/health.pb.h"
+#include "server_options.h"
 #include "service/metrics_http.h"
 #include "service/relevance_service.h"
 #include "service/session_restore.h"
@@ -36,52 +37,6 @@
 
 namespace {
 
-constexpr std::string_view kUsage =
-    "usage: relmap-server [--listen 127.0.0.1:50051] [--max-message-mb 64] [--max-sessions 1000]\n"
-    "                     [--max-points 1228800] [--port-file PATH] [--data-dir DIR]\n"
-    "                     [--admin-key-file PATH] [--tls-cert FILE --tls-key FILE]\n"
-    "                     [--max-threads 16] [--metrics-listen 127.0.0.1:9464]\n"
-    "                     [--metrics-port-file PATH] [--frames-per-session 8]\n"
-    "  --listen      address to serve on; port 0 picks a free port\n"
-    "  --port-file   write the port actually bound there (for tests and scripts)\n"
-    "  --data-dir    keep sessions and samples in DIR/relmap.sqlite (WAL) and restore them\n"
-    "                at start-up; without it sessions live in memory only\n"
-    "  --admin-key-file  a file holding the admin key that create, list and delete need\n"
-    "                (as 'x-relmap-admin-key' metadata); default $RELMAP_ADMIN_KEY, or none\n"
-    "  --tls-cert, --tls-key  serve TLS with this PEM certificate chain and private key\n"
-    "  --max-threads  bound of the worker threads; calls beyond it get RESOURCE_EXHAUSTED\n"
-    "  --metrics-listen  serve Prometheus metrics at http://ADDR/metrics (IPv4 host:port)\n"
-    "  --snapshot-every  with --data-dir: store a model snapshot every N samples of a\n"
-    "                session, so a restart relearns at most N (default 500; 0 never)\n"
-    "  --evict-idle-seconds  with --data-dir: drop sessions unused this long from memory;\n"
-    "                they are loaded again on their next call (default 1800; 0 never)\n"
-    "  --frames-per-session  frames each session keeps for PostOutcome; an outcome on an\n"
-    "                older one gets FAILED_PRECONDITION (default 8)\n"
-    "  --max-features-per-request  feature vectors in one ClassifyFeatures, AddSamples or\n"
-    "                ImportSession (default 100000; more → RESOURCE_EXHAUSTED)\n"
-    "  --config FILE  settings as lines 'name value' (the flag names without --)\n"
-    "  Every setting can also come from RELMAP_<NAME> in the environment (e.g.\n"
-    "  RELMAP_DATA_DIR); flags override the config file, which overrides the environment.\n";
-
-struct Options {
-  std::string listen = "127.0.0.1:50051";
-  int max_message_mb = 64;
-  std::size_t max_sessions = 1000;
-  long long max_points = 1280LL * 960LL;
-  std::string port_file;
-  std::string data_dir;
-  std::string admin_key;
-  std::string tls_cert;
-  std::string tls_key;
-  int max_threads = 16;
-  std::size_t snapshot_every = 500;
-  long long evict_idle_seconds = 1800;
-  std::size_t max_features_per_request = 100000;
-  std::size_t frames_per_session = 8;
-  std::string metrics_listen;
-  std::string metrics_port_file;
-};
-
 // The whole of a small file (a certificate or key), or ExitWithError.
 std::string ReadFileOrExit(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -91,134 +46,10 @@ std::string ReadFileOrExit(const std::string& path) {
   return text;
 }
 
-// The flags that take a value; each can also come from a config file (a line
-// "name value") or the environment (RELMAP_NAME, dashes as underscores).
-constexpr std::string_view kSettings[] = {"listen",
-                                          "max-message-mb",
-                                          "max-sessions",
-                                          "max-points",
-                                          "port-file",
-                                          "data-dir",
-                                          "tls-cert",
-                                          "tls-key",
-                                          "evict-idle-seconds",
-                                          "snapshot-every",
-                                          "metrics-listen",
-                                          "metrics-port-file",
-                                          "max-threads",
-                                          "admin-key-file",
-                                          "max-features-per-request",
-                                          "frames-per-session"};
-
-void Apply(Options& options, std::string_view name, const std::string& value) {
-  using relmap::tools::ExitWithError;
-  const auto number = [&] {
-    return relmap::tools::ParseNumberOrExit("relmap-server", "--" + std::string(name),
-                                            value.c_str());
-  };
-  if (name == "listen") {
-    options.listen = value;
-  } else if (name == "max-message-mb") {
-    options.max_message_mb = static_cast<int>(number());
-  } else if (name == "max-sessions") {
-    options.max_sessions = static_cast<std::size_t>(number());
-  } else if (name == "max-points") {
-    options.max_points = static_cast<long long>(number());
-  } else if (name == "port-file") {
-    options.port_file = value;
-  } else if (name == "data-dir") {
-    options.data_dir = value;
-  } else if (name == "tls-cert") {
-    options.tls_cert = value;
-  } else if (name == "tls-key") {
-    options.tls_key = value;
-  } else if (name == "evict-idle-seconds") {
-    options.evict_idle_seconds = static_cast<long long>(number());
-  } else if (name == "frames-per-session") {
-    options.frames_per_session = static_cast<std::size_t>(number());
-  } else if (name == "snapshot-every") {
-    options.snapshot_every = static_cast<std::size_t>(number());
-  } else if (name == "metrics-listen") {
-    options.metrics_listen = value;
-  } else if (name == "metrics-port-file") {
-    options.metrics_port_file = value;
-  } else if (name == "max-threads") {
-    options.max_threads = static_cast<int>(number());
-  } else if (name == "max-features-per-request") {
-    options.max_features_per_request = static_cast<std::size_t>(number());
-  } else if (name == "admin-key-file") {
-    std::ifstream in(value);
-    if (!(in >> options.admin_key)) {
-      ExitWithError("relmap-server", "cannot read an admin key from " + value);
-    }
-  } else {
-    ExitWithError("relmap-server",
-                  "unknown setting '" + std::string(name) + "'\n" + std::string(kUsage));
-  }
-}
-
-// Settings in increasing precedence: environment, --config file, flags.
-Options ParseArguments(int argc, char** argv) {
-  using relmap::tools::ExitWithError;
-  Options options;
-  for (std::string_view name : kSettings) {
-    std::string variable = "RELMAP_" + std::string(name);
-    for (char& c : variable)
-      c = c == '-' ? '_' : static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    if (const char* value = std::getenv(variable.c_str()); value != nullptr && *value != '\0') {
-      Apply(options, name, value);
-    }
-  }
-  if (const char* key = std::getenv("RELMAP_ADMIN_KEY"); key != nullptr) options.admin_key = key;
-
-  std::vector<std::pair<std::string, std::string>> flags;
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view flag = argv[i];
-    if (flag == "--help" || flag == "-h") {
-      std::fputs(kUsage.data(), stdout);
-      std::exit(0);
-    }
-    if (!flag.starts_with("--") || i + 1 >= argc) {
-      ExitWithError("relmap-server",
-                    "bad argument '" + std::string(flag) + "'\n" + std::string(kUsage));
-    }
-    flags.emplace_back(std::string(flag.substr(2)), argv[++i]);
-  }
-  for (const auto& [name, value] : flags) {
-    if (name != "config") continue;
-    std::ifstream in(value);
-    if (!in) ExitWithError("relmap-server", "cannot read the config file " + value);
-    std::string line;
-    for (int number = 1; std::getline(in, line); ++number) {
-      std::istringstream words(line.substr(0, line.find('#')));
-      std::string key, setting;
-      if (!(words >> key)) continue;  // blank or comment
-      if (!(words >> setting)) {
-        ExitWithError("relmap-server",
-                      value + ":" + std::to_string(number) + ": '" + key + "' needs a value");
-      }
-      Apply(options, key, setting);
-    }
-  }
-  for (const auto& [name, value] : flags) {
-    if (name != "config") Apply(options, name, value);
-  }
-
-  if (options.tls_cert.empty() != options.tls_key.empty()) {
-    ExitWithError("relmap-server", "--tls-cert and --tls-key go together");
-  }
-  if (options.max_threads < 2) ExitWithError("relmap-server", "--max-threads must be at least 2");
-  if (options.max_message_mb < 1 || options.max_sessions < 1 || options.max_points < 1 ||
-      options.max_features_per_request < 1 || options.frames_per_session < 1) {
-    ExitWithError("relmap-server", "limits must be positive");
-  }
-  return options;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = ParseArguments(argc, argv);
+  const relmap::server::ServerOptions options = relmap::server::ParseServerOptions(argc, argv);
   // Logs are diagnostics: standard error, one line per event.
   spdlog::set_default_logger(spdlog::stderr_color_mt("relmap-server"));
 
@@ -252,11 +83,14 @@ int main(int argc, char** argv) {
     registry.set_loader(
         [&store](const std::string& id) { return relmap::service::LoadStoredSession(*store, id); });
   }
-  relmap::perception::DecodeLimits limits;
-  limits.max_points = options.max_points;
-  limits.max_bytes = static_cast<long long>(options.max_message_mb) << 20;
+  relmap::service::ServiceLimits limits;
+  limits.decode.max_points = options.max_points;
+  limits.decode.max_bytes = static_cast<long long>(options.max_message_mb) << 20;
+  limits.max_features_per_request = options.max_features_per_request;
+  limits.concurrent_frames = options.max_concurrent_frames;
+  limits.queued_frames = options.max_queued_frames;
   relmap::service::RelevanceService service(
-      registry, limits, options.max_features_per_request,
+      registry, limits,
       options.admin_key.empty() ? std::string() : relmap::session::Sha256Hex(options.admin_key));
 
   grpc::EnableDefaultHealthCheckService(true);

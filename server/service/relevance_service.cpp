@@ -83,6 +83,22 @@ Status RelevanceService::CheckFeatureCount(int count) const {
                                 std::to_string(max_features_per_request_) + " per request");
 }
 
+std::optional<FrameAdmission::Ticket> RelevanceService::AdmitFrame(
+    const grpc::ServerContext& context) {
+  return admission_.Enter(
+      std::min(context.deadline(), std::chrono::system_clock::now() + max_frame_wait_));
+}
+
+grpc::Status RelevanceService::Busy(grpc::ServerContext& context) const {
+  // gRPC's server pushback trailer (retry design A6): the call did nothing, repeat it
+  // after this long. relmap's client reads it; gRPC's own retry policy would too.
+  context.AddTrailingMetadata("grpc-retry-pushback-ms", "100");
+  return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                      "busy: " + std::to_string(admission_.running()) + " clouds in progress and " +
+                          std::to_string(admission_.waiting()) +
+                          " waiting (--max-concurrent-frames, --max-queued-frames); retry later");
+}
+
 std::string RelevanceService::MetricsText() const {
   std::uint64_t samples = 0;
   const auto sessions = registry_.Resident();  // a scrape must not load evicted sessions
@@ -216,6 +232,8 @@ grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
     const auto start = std::chrono::steady_clock::now();
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
+    const std::optional<FrameAdmission::Ticket> admitted = AdmitFrame(*context);
+    if (!admitted) return Busy(*context);
     auto cloud = CloudFromProto(request->cloud(), limits_);
     if (!cloud.ok()) return ToGrpcStatus(cloud.status());
     const double decode_ms =
@@ -264,6 +282,8 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
     StatusOr<session::Outcome> outcome = InvalidArgumentError(
         "the outcome needs a label (LABEL_MOVEABLE or LABEL_NOT_MOVEABLE) or an after_cloud");
     if (request->has_after_cloud()) {
+      const std::optional<FrameAdmission::Ticket> admitted = AdmitFrame(*context);
+      if (!admitted) return Busy(*context);
       auto after = CloudFromProto(request->after_cloud(), limits_);
       if (!after.ok()) return ToGrpcStatus(after.status());
       outcome = (*session)->PostOutcomeFromCloud(request->frame_id(), request->supervoxel_id(),

@@ -4,25 +4,42 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "perception/perception_config.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
+#include "service/frame_admission.h"
 #include "service/metrics.h"
 #include "session/session_registry.h"
 
 namespace relmap::service {
 
+// The service's limits, beyond the sessions' own.
+struct ServiceLimits {
+  perception::DecodeLimits decode;
+  // Feature vectors in one ClassifyFeatures, AddSamples or ImportSession.
+  std::size_t max_features_per_request = 100000;
+  // Calls that process a cloud (frame_admission.h): running at once, waiting, and
+  // the longest wait before RESOURCE_EXHAUSTED.
+  std::size_t concurrent_frames = 2;
+  std::size_t queued_frames = 4;
+  std::chrono::milliseconds max_frame_wait{10000};
+};
+
 class RelevanceService final : public v1::RelevanceService::Service {
  public:
   // `admin_key_hash`: SHA-256 hex of the admin key that guards CreateSession,
-  // ListSessions and DeleteSession, or empty for none.
-  RelevanceService(session::SessionRegistry& registry, perception::DecodeLimits limits,
-                   std::size_t max_features_per_request, std::string admin_key_hash = {})
+  // ListSessions, DeleteSession and ImportSession, or empty for none.
+  RelevanceService(session::SessionRegistry& registry, const ServiceLimits& limits,
+                   std::string admin_key_hash = {})
       : registry_(registry),
-        limits_(limits),
-        max_features_per_request_(max_features_per_request),
+        limits_(limits.decode),
+        max_features_per_request_(limits.max_features_per_request),
+        max_frame_wait_(limits.max_frame_wait),
+        admission_(limits.concurrent_frames, limits.queued_frames),
         admin_key_hash_(std::move(admin_key_hash)) {}
 
   grpc::Status CreateSession(grpc::ServerContext* context, const v1::CreateSessionRequest* request,
@@ -64,9 +81,16 @@ class RelevanceService final : public v1::RelevanceService::Service {
   session::SessionRegistry& registry_;
   // RESOURCE_EXHAUSTED when a request carries more feature vectors than allowed.
   Status CheckFeatureCount(int count) const;
+  // A slot to process a cloud in, waiting at most until the call's deadline or
+  // max_frame_wait_; without one, RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms
+  // trailer, the signal that the call did nothing and may be repeated.
+  std::optional<FrameAdmission::Ticket> AdmitFrame(const grpc::ServerContext& context);
+  grpc::Status Busy(grpc::ServerContext& context) const;
 
   const perception::DecodeLimits limits_;
   const std::size_t max_features_per_request_;
+  const std::chrono::milliseconds max_frame_wait_;
+  FrameAdmission admission_;
   const std::string admin_key_hash_;
   Metrics metrics_;
 };

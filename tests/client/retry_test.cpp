@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -28,6 +29,11 @@ TEST(IsRetryable, AFullWorkerPoolIsRetriedForEveryCallBecauseNothingRan) {
 TEST(IsRetryable, TheServersOwnResourceLimitsAreFinal) {
   const grpc::Status too_big(grpc::StatusCode::RESOURCE_EXHAUSTED, "cloud of 2000000 points");
   EXPECT_FALSE(IsRetryable(too_big, Idempotence::kIdempotent));
+}
+
+TEST(IsRetryable, ABusyAnswerWithAPushbackIsRetriedForEveryCall) {
+  const grpc::Status busy(grpc::StatusCode::RESOURCE_EXHAUSTED, "busy: 2 clouds in progress");
+  EXPECT_TRUE(IsRetryable(busy, Idempotence::kNotIdempotent, /*pushback=*/true));
 }
 
 TEST(IsRetryable, ABrokenConnectionIsRetriedOnlyForIdempotentCalls) {
@@ -63,16 +69,22 @@ TEST(BackoffBefore, DoublesFromTheInitialWaitUpToTheCapWithJitterAroundIt) {
 // records the request ids of PostOutcome and how many calls arrived.
 class FlakyService final : public v1::RelevanceService::Service {
  public:
-  FlakyService(int failures, grpc::Status failure, milliseconds delay = milliseconds(0))
-      : failures_(failures), failure_(std::move(failure)), delay_(delay) {}
+  // `pushback`: failures carry a grpc-retry-pushback-ms trailer of that many ms.
+  FlakyService(int failures, grpc::Status failure, milliseconds delay = milliseconds(0),
+               std::optional<int> pushback = std::nullopt)
+      : failures_(failures), failure_(std::move(failure)), delay_(delay), pushback_(pushback) {}
 
   grpc::Status GetSession(grpc::ServerContext*, const v1::GetSessionRequest*,
                           v1::GetSessionResponse*) override {
     return Answer();
   }
-  grpc::Status ComputeMaps(grpc::ServerContext*, const v1::ComputeMapsRequest*,
+  grpc::Status ComputeMaps(grpc::ServerContext* context, const v1::ComputeMapsRequest*,
                            v1::ComputeMapsResponse*) override {
-    return Answer();
+    const grpc::Status status = Answer();
+    if (!status.ok() && pushback_) {
+      context->AddTrailingMetadata("grpc-retry-pushback-ms", std::to_string(*pushback_));
+    }
+    return status;
   }
   grpc::Status PostOutcome(grpc::ServerContext*, const v1::PostOutcomeRequest* request,
                            v1::PostOutcomeResponse*) override {
@@ -98,6 +110,7 @@ class FlakyService final : public v1::RelevanceService::Service {
   const int failures_;
   const grpc::Status failure_;
   const milliseconds delay_;
+  const std::optional<int> pushback_;
   std::atomic<int> calls_{0};
   mutable std::mutex mutex_;
   std::vector<std::string> request_ids_;
@@ -149,6 +162,17 @@ TEST_F(ClientAgainstFlakyServer, RepeatsComputeMapsThatABusyServerTurnedAway) {
   v1::ComputeMapsResponse response;
   EXPECT_TRUE(client_->ComputeMaps(session_, v1::Cloud{}, &response).ok());
   EXPECT_EQ(service.calls(), 3);
+}
+
+TEST_F(ClientAgainstFlakyServer, WaitsOutTheServersPushbackBeforeRepeating) {
+  FlakyService service(1, grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED, "busy"),
+                       milliseconds(0), 150);
+  Start(&service);
+  v1::ComputeMapsResponse response;
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_TRUE(client_->ComputeMaps(session_, v1::Cloud{}, &response).ok());
+  EXPECT_EQ(service.calls(), 2);
+  EXPECT_GE(std::chrono::steady_clock::now() - start, milliseconds(150));
 }
 
 TEST_F(ClientAgainstFlakyServer, ARetriedOutcomeKeepsOneGeneratedRequestId) {

@@ -46,7 +46,7 @@ class InProcessServer {
  public:
   explicit InProcessServer(std::string admin_key = {})
       : registry_(kMaxSessions),
-        service_(registry_, SmallDecodeLimits(), kMaxFeaturesPerRequest,
+        service_(registry_, Limits(),
                  admin_key.empty() ? std::string() : session::Sha256Hex(admin_key)) {
     grpc::ServerBuilder builder;
     builder.RegisterService(&service_);
@@ -58,9 +58,10 @@ class InProcessServer {
   v1::RelevanceService::Stub& stub() { return *stub_; }
 
  private:
-  static perception::DecodeLimits SmallDecodeLimits() {
-    perception::DecodeLimits limits;
-    limits.max_points = static_cast<long long>(kWidth) * kHeight;
+  static service::ServiceLimits Limits() {
+    service::ServiceLimits limits;
+    limits.decode.max_points = static_cast<long long>(kWidth) * kHeight;
+    limits.max_features_per_request = kMaxFeaturesPerRequest;
     return limits;
   }
 

@@ -5,7 +5,9 @@
 #include <grpcpp/alarm.h>
 #include <grpcpp/grpcpp.h>
 
+#include <algorithm>
 #include <memory>
+#include <optional>
 
 #include "outcome_label.h"
 #include "retry.h"
@@ -157,13 +159,17 @@ class Driver {
       maps ? OnMaps(loop) : OnOutcome(loop);
       return;
     }
-    // Only "Server Threadpool Exhausted" is retried: the server provably did not
-    // run the call. Its other RESOURCE_EXHAUSTED answers (a cloud over the point
+    // Only calls the server provably did not run are retried ("Server Threadpool
+    // Exhausted", or a busy answer with a pushback trailer, waited out at least as
+    // long as it asks). Its other RESOURCE_EXHAUSTED answers (a cloud over the point
     // limit, too many sessions) are final, like every other error.
+    const std::optional<std::chrono::milliseconds> pushback = client::PushbackOf(*loop.context);
     const auto retry_at =
         std::chrono::system_clock::now() +
-        client::BackoffBefore(loop.attempt + 1, plan_.retry, loop.jitter.NextUnit());
-    if (client::IsRetryable(loop.status, client::Idempotence::kNotIdempotent) &&
+        std::max(pushback.value_or(std::chrono::milliseconds(0)),
+                 client::BackoffBefore(loop.attempt + 1, plan_.retry, loop.jitter.NextUnit()));
+    if (client::IsRetryable(loop.status, client::Idempotence::kNotIdempotent,
+                            pushback.has_value()) &&
         loop.attempt < plan_.retry.max_attempts && retry_at < loop.call_deadline) {
       ++(maps ? results_.compute_maps_exhausted : results_.post_outcome_exhausted);
       ++loop.attempt;

@@ -1,0 +1,189 @@
+// Parsing and validation of relmap-server's settings.
+#include "server_options.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "tools/command_line.h"
+
+namespace relmap::server {
+namespace {
+
+constexpr std::string_view kUsage =
+    "usage: relmap-server [--listen 127.0.0.1:50051] [--max-message-mb 64] [--max-sessions 1000]\n"
+    "                     [--max-points 1228800] [--port-file PATH] [--data-dir DIR]\n"
+    "                     [--admin-key-file PATH] [--tls-cert FILE --tls-key FILE]\n"
+    "                     [--max-threads 16] [--metrics-listen 127.0.0.1:9464]\n"
+    "                     [--metrics-port-file PATH] [--frames-per-session 8]\n"
+    "                     [--max-concurrent-frames CORES] [--max-queued-frames 2xCORES]\n"
+    "  --listen      address to serve on; port 0 picks a free port\n"
+    "  --port-file   write the port actually bound there (for tests and scripts)\n"
+    "  --data-dir    keep sessions and samples in DIR/relmap.sqlite (WAL) and restore them\n"
+    "                at start-up; without it sessions live in memory only\n"
+    "  --admin-key-file  a file holding the admin key that create, list and delete need\n"
+    "                (as 'x-relmap-admin-key' metadata); default $RELMAP_ADMIN_KEY, or none\n"
+    "  --tls-cert, --tls-key  serve TLS with this PEM certificate chain and private key\n"
+    "  --max-threads  bound of the worker threads; calls beyond it get RESOURCE_EXHAUSTED\n"
+    "  --metrics-listen  serve Prometheus metrics at http://ADDR/metrics (IPv4 host:port)\n"
+    "  --snapshot-every  with --data-dir: store a model snapshot every N samples of a\n"
+    "                session, so a restart relearns at most N (default 500; 0 never)\n"
+    "  --evict-idle-seconds  with --data-dir: drop sessions unused this long from memory;\n"
+    "                they are loaded again on their next call (default 1800; 0 never)\n"
+    "  --frames-per-session  frames each session keeps for PostOutcome; an outcome on an\n"
+    "                older one gets FAILED_PRECONDITION (default 8)\n"
+    "  --max-concurrent-frames  calls that process a cloud (ComputeMaps, PostOutcome with\n"
+    "                an after cloud) running at once (default: the machine's cores)\n"
+    "  --max-queued-frames  such calls waiting for a slot (default twice the above); more\n"
+    "                get RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms trailer\n"
+    "  --max-features-per-request  feature vectors in one ClassifyFeatures, AddSamples or\n"
+    "                ImportSession (default 100000; more → RESOURCE_EXHAUSTED)\n"
+    "  --config FILE  settings as lines 'name value' (the flag names without --)\n"
+    "  Every setting can also come from RELMAP_<NAME> in the environment (e.g.\n"
+    "  RELMAP_DATA_DIR); flags override the config file, which overrides the environment.\n";
+
+// The flags that take a value; each can also come from a config file (a line
+// "name value") or the environment (RELMAP_NAME, dashes as underscores).
+constexpr std::string_view kSettings[] = {"listen",
+                                          "max-message-mb",
+                                          "max-sessions",
+                                          "max-points",
+                                          "port-file",
+                                          "data-dir",
+                                          "tls-cert",
+                                          "tls-key",
+                                          "evict-idle-seconds",
+                                          "snapshot-every",
+                                          "metrics-listen",
+                                          "metrics-port-file",
+                                          "max-threads",
+                                          "admin-key-file",
+                                          "max-features-per-request",
+                                          "frames-per-session",
+                                          "max-concurrent-frames",
+                                          "max-queued-frames"};
+
+void Apply(ServerOptions& options, std::string_view name, const std::string& value) {
+  using relmap::tools::ExitWithError;
+  const auto number = [&] {
+    return relmap::tools::ParseNumberOrExit("relmap-server", "--" + std::string(name),
+                                            value.c_str());
+  };
+  if (name == "listen") {
+    options.listen = value;
+  } else if (name == "max-message-mb") {
+    options.max_message_mb = static_cast<int>(number());
+  } else if (name == "max-sessions") {
+    options.max_sessions = static_cast<std::size_t>(number());
+  } else if (name == "max-points") {
+    options.max_points = static_cast<long long>(number());
+  } else if (name == "port-file") {
+    options.port_file = value;
+  } else if (name == "data-dir") {
+    options.data_dir = value;
+  } else if (name == "tls-cert") {
+    options.tls_cert = value;
+  } else if (name == "tls-key") {
+    options.tls_key = value;
+  } else if (name == "evict-idle-seconds") {
+    options.evict_idle_seconds = static_cast<long long>(number());
+  } else if (name == "max-concurrent-frames") {
+    options.max_concurrent_frames = static_cast<std::size_t>(number());
+  } else if (name == "max-queued-frames") {
+    options.max_queued_frames = static_cast<std::size_t>(number());
+  } else if (name == "frames-per-session") {
+    options.frames_per_session = static_cast<std::size_t>(number());
+  } else if (name == "snapshot-every") {
+    options.snapshot_every = static_cast<std::size_t>(number());
+  } else if (name == "metrics-listen") {
+    options.metrics_listen = value;
+  } else if (name == "metrics-port-file") {
+    options.metrics_port_file = value;
+  } else if (name == "max-threads") {
+    options.max_threads = static_cast<int>(number());
+  } else if (name == "max-features-per-request") {
+    options.max_features_per_request = static_cast<std::size_t>(number());
+  } else if (name == "admin-key-file") {
+    std::ifstream in(value);
+    if (!(in >> options.admin_key)) {
+      ExitWithError("relmap-server", "cannot read an admin key from " + value);
+    }
+  } else {
+    ExitWithError("relmap-server",
+                  "unknown setting '" + std::string(name) + "'\n" + std::string(kUsage));
+  }
+}
+
+// Settings in increasing precedence: environment, --config file, flags.
+}  // namespace
+
+ServerOptions ParseServerOptions(int argc, char** argv) {
+  using relmap::tools::ExitWithError;
+  ServerOptions options;
+  for (std::string_view name : kSettings) {
+    std::string variable = "RELMAP_" + std::string(name);
+    for (char& c : variable)
+      c = c == '-' ? '_' : static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    if (const char* value = std::getenv(variable.c_str()); value != nullptr && *value != '\0') {
+      Apply(options, name, value);
+    }
+  }
+  if (const char* key = std::getenv("RELMAP_ADMIN_KEY"); key != nullptr) options.admin_key = key;
+
+  std::vector<std::pair<std::string, std::string>> flags;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view flag = argv[i];
+    if (flag == "--help" || flag == "-h") {
+      std::fputs(kUsage.data(), stdout);
+      std::exit(0);
+    }
+    if (!flag.starts_with("--") || i + 1 >= argc) {
+      ExitWithError("relmap-server",
+                    "bad argument '" + std::string(flag) + "'\n" + std::string(kUsage));
+    }
+    flags.emplace_back(std::string(flag.substr(2)), argv[++i]);
+  }
+  for (const auto& [name, value] : flags) {
+    if (name != "config") continue;
+    std::ifstream in(value);
+    if (!in) ExitWithError("relmap-server", "cannot read the config file " + value);
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+      std::istringstream words(line.substr(0, line.find('#')));
+      std::string key, setting;
+      if (!(words >> key)) continue;  // blank or comment
+      if (!(words >> setting)) {
+        ExitWithError("relmap-server",
+                      value + ":" + std::to_string(number) + ": '" + key + "' needs a value");
+      }
+      Apply(options, key, setting);
+    }
+  }
+  for (const auto& [name, value] : flags) {
+    if (name != "config") Apply(options, name, value);
+  }
+
+  if (options.tls_cert.empty() != options.tls_key.empty()) {
+    ExitWithError("relmap-server", "--tls-cert and --tls-key go together");
+  }
+  if (options.max_threads < 2) ExitWithError("relmap-server", "--max-threads must be at least 2");
+  if (options.max_message_mb < 1 || options.max_sessions < 1 || options.max_points < 1 ||
+      options.max_features_per_request < 1 || options.frames_per_session < 1) {
+    ExitWithError("relmap-server", "limits must be positive");
+  }
+  if (options.max_concurrent_frames == 0) {
+    options.max_concurrent_frames = std::max(1u, std::thread::hardware_concurrency());
+  }
+  if (options.max_queued_frames == 0) options.max_queued_frames = 2 * options.max_concurrent_frames;
+  return options;
+}
+
+}  // namespace relmap::server

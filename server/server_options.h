@@ -1,0 +1,37 @@
+// relmap-server's settings: flags, a --config file (lines "name value") and
+// RELMAP_<NAME> environment variables, in decreasing precedence, checked in one place.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace relmap::server {
+
+struct ServerOptions {
+  std::string listen = "127.0.0.1:50051";
+  int max_message_mb = 64;
+  std::size_t max_sessions = 1000;
+  long long max_points = 1280LL * 960LL;
+  std::string port_file;
+  std::string data_dir;
+  std::string admin_key;
+  std::string tls_cert;
+  std::string tls_key;
+  int max_threads = 16;
+  std::size_t snapshot_every = 500;
+  long long evict_idle_seconds = 1800;
+  std::size_t max_features_per_request = 100000;
+  std::size_t frames_per_session = 8;
+  // Calls that process a cloud: running at once (default: the machine's cores) and
+  // waiting for a slot, beyond which they are refused (service/frame_admission.h).
+  std::size_t max_concurrent_frames = 0;  // 0: std::thread::hardware_concurrency()
+  std::size_t max_queued_frames = 0;      // 0: twice max_concurrent_frames
+  std::string metrics_listen;
+  std::string metrics_port_file;
+};
+
+// The settings of this process; --help prints the usage and exits 0, a bad or
+// unknown setting exits 2 with a message.
+ServerOptions ParseServerOptions(int argc, char** argv);
+
+}  // namespace relmap::server
