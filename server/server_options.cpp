@@ -24,7 +24,7 @@ constexpr std::string_view kUsage =
     "                     [--admin-key-file PATH] [--tls-cert FILE --tls-key FILE]\n"
     "                     [--max-threads 16] [--metrics-listen 127.0.0.1:9464]\n"
     "                     [--metrics-port-file PATH] [--frames-per-session 8]\n"
-    "                     [--max-concurrent-frames CORES] [--max-queued-frames 2xCORES]\n"
+    "                     [--max-concurrent-frames CORES] [--max-queued-frames THREADS/2]\n"
     "  --listen      address to serve on; port 0 picks a free port\n"
     "  --port-file   write the port actually bound there (for tests and scripts)\n"
     "  --data-dir    keep sessions and samples in DIR/relmap.sqlite (WAL) and restore them\n"
@@ -42,7 +42,8 @@ constexpr std::string_view kUsage =
     "                older one gets FAILED_PRECONDITION (default 8)\n"
     "  --max-concurrent-frames  calls that process a cloud (ComputeMaps, PostOutcome with\n"
     "                an after cloud) running at once (default: the machine's cores)\n"
-    "  --max-queued-frames  such calls waiting for a slot (default twice the above); more\n"
+    "  --max-queued-frames  such calls waiting for a slot, first come first served (default\n"
+    "                half of --max-threads, leaving the rest to cheap calls); more\n"
     "                get RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms trailer\n"
     "  --max-features-per-request  feature vectors in one ClassifyFeatures, AddSamples or\n"
     "                ImportSession (default 100000; more → RESOURCE_EXHAUSTED)\n"
@@ -182,7 +183,9 @@ ServerOptions ParseServerOptions(int argc, char** argv) {
   if (options.max_concurrent_frames == 0) {
     options.max_concurrent_frames = std::max(1u, std::thread::hardware_concurrency());
   }
-  if (options.max_queued_frames == 0) options.max_queued_frames = 2 * options.max_concurrent_frames;
+  if (options.max_queued_frames == 0) {
+    options.max_queued_frames = static_cast<std::size_t>(options.max_threads) / 2;
+  }
   return options;
 }
 

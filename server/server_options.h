@@ -25,7 +25,7 @@ struct ServerOptions {
   // Calls that process a cloud: running at once (default: the machine's cores) and
   // waiting for a slot, beyond which they are refused (service/frame_admission.h).
   std::size_t max_concurrent_frames = 0;  // 0: std::thread::hardware_concurrency()
-  std::size_t max_queued_frames = 0;      // 0: twice max_concurrent_frames
+  std::size_t max_queued_frames = 0;      // 0: half of max_threads
   std::string metrics_listen;
   std::string metrics_port_file;
 };

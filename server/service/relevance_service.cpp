@@ -234,10 +234,14 @@ grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
     if (!session.ok()) return ToGrpcStatus(session.status());
     const std::optional<FrameAdmission::Ticket> admitted = AdmitFrame(*context);
     if (!admitted) return Busy(*context);
+    const auto admitted_at = std::chrono::steady_clock::now();
     auto cloud = CloudFromProto(request->cloud(), limits_);
     if (!cloud.ok()) return ToGrpcStatus(cloud.status());
-    const double decode_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const auto milliseconds = [](auto from, auto to) {
+      return std::chrono::duration<double, std::milli>(to - from).count();
+    };
+    const double admission_ms = milliseconds(start, admitted_at);
+    const double decode_ms = milliseconds(admitted_at, std::chrono::steady_clock::now());
     auto mapped = (*session)->ComputeMaps(std::move(cloud).value(), NowUnixMs());
     if (!mapped.ok()) return ToGrpcStatus(mapped.status());
 
@@ -261,14 +265,13 @@ grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
     }
     response->set_unusable_supervoxels(static_cast<std::uint32_t>(maps.unusable_rows));
     v1::StageTimings* timings = response->mutable_timings();
+    timings->set_admission_ms(admission_ms);
     timings->set_decode_ms(decode_ms);
     timings->set_filter_ms(frame.timings.filter_ms);
     timings->set_supervoxels_ms(frame.timings.supervoxels_ms);
     timings->set_features_ms(frame.timings.features_ms);
     timings->set_maps_ms(mapped->maps_ms);
-    timings->set_total_ms(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
+    timings->set_total_ms(milliseconds(start, std::chrono::steady_clock::now()));
     return grpc::Status::OK;
   });
 }

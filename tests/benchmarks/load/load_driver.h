@@ -44,7 +44,8 @@ struct LoadPlan {
 
 // Means of ComputeMaps' stage timings as the server measured them.
 struct ServerStageMeans {
-  double decode_ms = 0, filter_ms = 0, supervoxels_ms = 0, features_ms = 0, maps_ms = 0;
+  double admission_ms = 0, decode_ms = 0, filter_ms = 0, supervoxels_ms = 0, features_ms = 0,
+         maps_ms = 0;
 };
 
 struct LoadResults {

@@ -145,10 +145,10 @@ void PrintTextReport(std::FILE* out, const LoadReport& report) {
   PrintLatencyRow(out, "ComputeMaps (server handler)", r.server_compute_maps_ms.Summarise());
   const ServerStageMeans& stages = r.server_stages;
   std::fprintf(out,
-               "server stages, mean ms: decode %.1f, filter %.1f, supervoxels %.1f, features "
-               "%.1f, maps %.1f; %.1f supervoxels per frame\n",
-               stages.decode_ms, stages.filter_ms, stages.supervoxels_ms, stages.features_ms,
-               stages.maps_ms, r.mean_supervoxels);
+               "server stages, mean ms: admission %.1f, decode %.1f, filter %.1f, supervoxels "
+               "%.1f, features %.1f, maps %.1f; %.1f supervoxels per frame\n",
+               stages.admission_ms, stages.decode_ms, stages.filter_ms, stages.supervoxels_ms,
+               stages.features_ms, stages.maps_ms, r.mean_supervoxels);
   std::fprintf(out,
                "RESOURCE_EXHAUSTED (worker pool full), retried: %llu (ComputeMaps %llu, "
                "PostOutcome %llu)\n",
@@ -185,6 +185,7 @@ void PrintJsonReport(std::FILE* out, const LoadReport& report) {
   const LoadResults& r = report.results;
   const ServerStageMeans& s = r.server_stages;
   const std::string stages = JsonObject()
+                                 .Number("admission", s.admission_ms)
                                  .Number("decode", s.decode_ms)
                                  .Number("filter", s.filter_ms)
                                  .Number("supervoxels", s.supervoxels_ms)
