@@ -1,6 +1,6 @@
 // relmap maps and relmap outcome: one push cycle from the command line.
 #include "cli_commands.h"
-#include "map_rendering.h"
+#include "map_rendering_cloud.h"
 #include "perception/decode.h"
 #include "tools/command_line.h"
 

@@ -3,10 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <unordered_map>
-
-#include "perception/pcd_encoder.h"
 
 namespace relmap::client {
 namespace {
@@ -20,21 +17,21 @@ std::uint8_t Channel(double unit) {
 
 // Outside every supervoxel: the point's own brightness squeezed into [80, 176], a grey
 // that neither ramp produces, so the scene stays readable around the maps.
-image::Rgb Unlabelled(const perception::CloudPoint& p) {
-  const double brightness = (0.299 * p.r + 0.587 * p.g + 0.114 * p.b) / 255.0;
+image::Rgb Unlabelled(const image::Rgb& own) {
+  const double brightness = (0.299 * own[0] + 0.587 * own[1] + 0.114 * own[2]) / 255.0;
   const auto grey = static_cast<std::uint8_t>(80 + std::lround(96.0 * brightness));
   return {grey, grey, grey};
 }
 
 // Whether point `i` of the target lies on its border: a 4-neighbour of another label
 // or off the picture. Unorganized clouds have no neighbours: all their points are border.
-bool OnTargetBorder(const perception::Cloud& cloud,
+bool OnTargetBorder(std::uint32_t width, std::uint32_t height,
                     const google::protobuf::RepeatedField<std::int32_t>& labels, std::size_t i) {
-  if (!cloud.organized()) return true;
-  const std::size_t width = cloud.width(), x = i % width, y = i / width;
+  if (height <= 1) return true;
+  const std::size_t x = i % width, y = i / width;
   const std::int32_t label = labels[static_cast<int>(i)];
   const auto differs = [&](std::size_t j) { return labels[static_cast<int>(j)] != label; };
-  return x == 0 || y == 0 || x + 1 == width || y + 1 == cloud.height() || differs(i - 1) ||
+  return x == 0 || y == 0 || x + 1 == width || y + 1 == height || differs(i - 1) ||
          differs(i + 1) || differs(i - width) || differs(i + width);
 }
 
@@ -50,13 +47,17 @@ image::Rgb ChoiceColour(double choice, double max_choice) {
   return {Channel(t), 0, Channel(1.0 - t)};
 }
 
-StatusOr<std::vector<image::ColouredPoint>> ColourPoints(const perception::Cloud& cloud,
-                                                         const v1::ComputeMapsResponse& maps,
-                                                         MapKind kind) {
+StatusOr<std::vector<image::ColouredPoint>> ColourPoints(
+    std::uint32_t width, std::uint32_t height, const std::vector<image::ColouredPoint>& points,
+    const v1::ComputeMapsResponse& maps, MapKind kind) {
+  if (points.size() != static_cast<std::size_t>(width) * height) {
+    return InvalidArgumentError(std::to_string(points.size()) + " points do not make a " +
+                                std::to_string(width) + "x" + std::to_string(height) + " cloud");
+  }
   const auto& labels = maps.point_labels();
-  if (static_cast<std::size_t>(labels.size()) != cloud.size()) {
+  if (static_cast<std::size_t>(labels.size()) != points.size()) {
     return InvalidArgumentError("the server labelled " + std::to_string(labels.size()) +
-                                " points, the cloud has " + std::to_string(cloud.size()) +
+                                " points, the cloud has " + std::to_string(points.size()) +
                                 ": not the cloud of this frame");
   }
   double max_choice = 0;
@@ -69,9 +70,9 @@ StatusOr<std::vector<image::ColouredPoint>> ColourPoints(const perception::Cloud
   }
   const std::int32_t target =
       maps.has_target_supervoxel_id() ? static_cast<std::int32_t>(maps.target_supervoxel_id()) : -1;
-  std::vector<image::ColouredPoint> points(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const perception::CloudPoint p = cloud.point(i);
+  std::vector<image::ColouredPoint> coloured(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const image::ColouredPoint& p = points[i];
     const std::int32_t label = labels[static_cast<int>(i)];
     image::Rgb colour = kHole;
     if (label >= 0) {
@@ -80,39 +81,23 @@ StatusOr<std::vector<image::ColouredPoint>> ColourPoints(const perception::Cloud
         return InvalidArgumentError("point " + std::to_string(i) + " has supervoxel " +
                                     std::to_string(label) + ", which the maps do not list");
       }
-      colour = label == target && OnTargetBorder(cloud, labels, i) ? kTargetOutline : it->second;
+      colour = label == target && OnTargetBorder(width, height, labels, i) ? kTargetOutline
+                                                                           : it->second;
     } else if (std::isfinite(p.x)) {
-      colour = Unlabelled(p);
+      colour = Unlabelled(p.colour);
     }
-    points[i] = {p.x, p.y, p.z, colour};
+    coloured[i] = {p.x, p.y, p.z, colour};
   }
-  return points;
+  return coloured;
 }
 
-Status WriteMapPng(const perception::Cloud& cloud, const v1::ComputeMapsResponse& maps,
-                   MapKind kind, const std::string& path) {
-  StatusOr<std::vector<image::ColouredPoint>> points = ColourPoints(cloud, maps, kind);
-  if (!points.ok()) return points.status();
-  return image::WritePng(image::RasterisePoints(*points, cloud.width(), cloud.height(), kHole),
-                         path);
-}
-
-Status WriteRelevancePcd(const perception::Cloud& cloud, const v1::ComputeMapsResponse& maps,
-                         const std::string& path) {
+Status WriteMapPng(std::uint32_t width, std::uint32_t height,
+                   const std::vector<image::ColouredPoint>& points,
+                   const v1::ComputeMapsResponse& maps, MapKind kind, const std::string& path) {
   StatusOr<std::vector<image::ColouredPoint>> coloured =
-      ColourPoints(cloud, maps, MapKind::kRelevance);
+      ColourPoints(width, height, points, maps, kind);
   if (!coloured.ok()) return coloured.status();
-  std::vector<perception::CloudPoint> points(coloured->size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const image::ColouredPoint& p = (*coloured)[i];
-    points[i] = {p.x, p.y, p.z, p.colour[0], p.colour[1], p.colour[2], 255};
-  }
-  std::ofstream out(path, std::ios::binary);
-  const std::string pcd = perception::EncodePcd(cloud.width(), cloud.height(), points);
-  if (!out.write(pcd.data(), static_cast<std::streamsize>(pcd.size()))) {
-    return InternalError("cannot write " + path);
-  }
-  return OkStatus();
+  return image::WritePng(image::RasterisePoints(*coloured, width, height, kHole), path);
 }
 
 }  // namespace relmap::client

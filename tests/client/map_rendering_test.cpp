@@ -1,6 +1,9 @@
 // The map colours (black→yellow relevance, blue→red choice) and their mapping onto
-// the points through the server's point labels.
+// the points through the server's point labels, over plain coloured points and over
+// decoded clouds.
 #include "map_rendering.h"
+
+#include "map_rendering_cloud.h"
 
 #include <gtest/gtest.h>
 
@@ -87,6 +90,50 @@ TEST(ColourPoints, ALabelTheMapsDoNotListIsRejected) {
   Scene scene = ThreeByThree();
   scene.maps.set_point_labels(0, 7);
   EXPECT_EQ(ColourPoints(scene.cloud, scene.maps, MapKind::kRelevance).status().code(),
+            StatusCode::kInvalidArgument);
+}
+
+// The same 3×3 scene as plain points, each in its own colour: black on the left two
+// columns, white on the right one (as in the cloud, so the only unlabelled point,
+// bottom right, is white in both).
+std::vector<image::ColouredPoint> ThreeByThreePoints() {
+  const Scene scene = ThreeByThree();
+  std::vector<image::ColouredPoint> points(9);
+  for (std::size_t i = 0; i < 9; ++i) {
+    const perception::CloudPoint p = scene.cloud.point(i);
+    const std::uint8_t level = i % 3 == 2 ? 255 : 0;
+    points[i] = {p.x, p.y, p.z, {level, level, level}};
+  }
+  return points;
+}
+
+TEST(ColourPointsOfPlainPoints, GreysTheUnlabelledPointsByTheirOwnColour) {
+  const Scene scene = ThreeByThree();
+  std::vector<image::ColouredPoint> points = ThreeByThreePoints();
+  const StatusOr<std::vector<image::ColouredPoint>> coloured =
+      ColourPoints(3, 3, points, scene.maps, MapKind::kRelevance);
+  ASSERT_TRUE(coloured.ok()) << coloured.status().message();
+  EXPECT_EQ((*coloured)[0].colour, (Rgb{255, 255, 0}));
+  EXPECT_EQ((*coloured)[4].colour, (Rgb{255, 255, 255}));  // a hole
+  EXPECT_EQ((*coloured)[8].colour, (Rgb{176, 176, 176}));  // white: 80 + 96
+  points[8].colour = {0, 0, 0};
+  EXPECT_EQ(ColourPoints(3, 3, points, scene.maps, MapKind::kRelevance)->at(8).colour,
+            (Rgb{80, 80, 80}));  // black: 80 + 0
+}
+
+TEST(ColourPointsOfPlainPoints, AgreesWithTheDecodedCloud) {
+  const Scene scene = ThreeByThree();
+  const auto plain = ColourPoints(3, 3, ThreeByThreePoints(), scene.maps, MapKind::kChoice);
+  const auto decoded = ColourPoints(scene.cloud, scene.maps, MapKind::kChoice);
+  ASSERT_TRUE(plain.ok() && decoded.ok());
+  for (std::size_t i = 0; i < 9; ++i) EXPECT_EQ((*plain)[i].colour, (*decoded)[i].colour) << i;
+}
+
+TEST(ColourPointsOfPlainPoints, PointsThatDoNotFillTheSizeAreRejected) {
+  const Scene scene = ThreeByThree();
+  EXPECT_EQ(ColourPoints(3, 2, ThreeByThreePoints(), scene.maps, MapKind::kRelevance)
+                .status()
+                .code(),
             StatusCode::kInvalidArgument);
 }
 
