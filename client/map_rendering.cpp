@@ -81,8 +81,8 @@ StatusOr<std::vector<image::ColouredPoint>> ColourPoints(
         return InvalidArgumentError("point " + std::to_string(i) + " has supervoxel " +
                                     std::to_string(label) + ", which the maps do not list");
       }
-      colour = label == target && OnTargetBorder(width, height, labels, i) ? kTargetOutline
-                                                                           : it->second;
+      colour =
+          label == target && OnTargetBorder(width, height, labels, i) ? kTargetOutline : it->second;
     } else if (std::isfinite(p.x)) {
       colour = Unlabelled(p.colour);
     }

@@ -3,11 +3,11 @@
 // decoded clouds.
 #include "map_rendering.h"
 
-#include "map_rendering_cloud.h"
-
 #include <gtest/gtest.h>
 
 #include <limits>
+
+#include "map_rendering_cloud.h"
 
 namespace relmap::client {
 namespace {
@@ -131,10 +131,9 @@ TEST(ColourPointsOfPlainPoints, AgreesWithTheDecodedCloud) {
 
 TEST(ColourPointsOfPlainPoints, PointsThatDoNotFillTheSizeAreRejected) {
   const Scene scene = ThreeByThree();
-  EXPECT_EQ(ColourPoints(3, 2, ThreeByThreePoints(), scene.maps, MapKind::kRelevance)
-                .status()
-                .code(),
-            StatusCode::kInvalidArgument);
+  EXPECT_EQ(
+      ColourPoints(3, 2, ThreeByThreePoints(), scene.maps, MapKind::kRelevance).status().code(),
+      StatusCode::kInvalidArgument);
 }
 
 }  // namespace
