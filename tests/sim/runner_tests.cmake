@@ -1,1 +1,32 @@
-# Tests of the runner and relmap-sim.
+# Tests of the runner and relmap-sim, on an analytic test double of the world
+# (analytic_scene.h): unit tests of its pieces, and runs against a real server.
+add_library(relmap_sim_analytic_scene STATIC analytic_scene.cpp)
+target_include_directories(relmap_sim_analytic_scene PUBLIC ${PROJECT_SOURCE_DIR}/tests)
+target_link_libraries(relmap_sim_analytic_scene PUBLIC relmap_sim_runner PRIVATE relmap_warnings)
+
+relmap_add_gtest(sim_runner_test
+  SOURCES analytic_scene_test.cpp curves_test.cpp experiment_options_test.cpp
+          ground_truth_test.cpp packed_cloud_test.cpp target_choice_test.cpp
+  # perception only to decode packed clouds with the server's own decoder.
+  LIBRARIES relmap_sim_analytic_scene relmap_sim_runner relmap_perception
+  LABELS unit)
+
+relmap_add_gtest(sim_runner_end_to_end_test
+  SOURCES runner_end_to_end_test.cpp
+  LIBRARIES relmap_sim_analytic_scene relmap_sim_runner relmap_local_server relmap_integration_support
+  LABELS integration)
+target_compile_definitions(sim_runner_end_to_end_test PRIVATE
+  RELMAP_SERVER_BINARY="$<TARGET_FILE:relmap-server>")
+add_dependencies(sim_runner_end_to_end_test relmap-server)
+
+# The acceptance run on the paper's MoveableBalls scene: it needs the ODE world, and
+# switches itself on once world.cmake defines relmap_sim_world.
+if(TARGET relmap_sim_world)
+  relmap_add_gtest(sim_moveable_balls_test
+    SOURCES moveable_balls_test.cpp
+    LIBRARIES relmap_sim_runner relmap_local_server relmap_integration_support
+    LABELS slow)
+  target_compile_definitions(sim_moveable_balls_test PRIVATE
+    RELMAP_SERVER_BINARY="$<TARGET_FILE:relmap-server>")
+  add_dependencies(sim_moveable_balls_test relmap-server)
+endif()

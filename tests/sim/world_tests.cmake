@@ -1,1 +1,7 @@
-# Tests of relmap_sim_world.
+# Tests of relmap_sim_world: scene files, the ray-cast camera, pushes, respawns,
+# the shipped scenes, and the scenes/render commands.
+relmap_add_gtest(sim_world_test
+  SOURCES scene_file_test.cpp ray_camera_test.cpp push_test.cpp respawn_test.cpp
+          shipped_scenes_test.cpp seeded_random_test.cpp scene_commands_test.cpp
+  LIBRARIES relmap_sim_world relmap_sim_scene_commands
+  LABELS unit)

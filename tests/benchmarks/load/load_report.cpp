@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "json_writer.h"
+
 namespace relmap::load {
 namespace {
 
@@ -65,20 +67,7 @@ class JsonObject {
   }
   JsonObject& String(const std::string& key, const std::string& value) {
     Key(key);
-    text_ += '"';
-    for (const char c : value) {
-      if (c == '"' || c == '\\') {
-        text_ += '\\';
-        text_ += c;
-      } else if (static_cast<unsigned char>(c) < 0x20) {
-        char escaped[8];
-        std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
-        text_ += escaped;
-      } else {
-        text_ += c;
-      }
-    }
-    text_ += '"';
+    text_ += client::JsonQuoted(value);
     return *this;
   }
   JsonObject& Raw(const std::string& key, const std::string& json) {

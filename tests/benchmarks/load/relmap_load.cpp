@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "launched_server.h"
 #include "load_cloud.h"
 #include "load_driver.h"
 #include "load_options.h"
 #include "load_report.h"
+#include "local_server.h"
 #include "process_memory.h"
 #include "relevance_client.h"
 #include "seeded_random.h"
@@ -87,15 +87,17 @@ int Run(const LoadOptions& options) {
   report.seed = options.seed;
   report.cloud = cloud->description;
 
-  std::unique_ptr<LaunchedServer> launched;
+  std::unique_ptr<client::LocalServer> launched;
   std::string address = options.server_address;
   pid_t server_pid = options.server_pid;
   if (address.empty()) {
-    std::vector<std::string> arguments;
+    client::LocalServerOptions server_options;
+    server_options.memory_only = options.memory_only;
     if (options.server_max_threads > 0) {
-      arguments = {"--max-threads", std::to_string(options.server_max_threads)};
+      server_options.extra_arguments = {"--max-threads",
+                                        std::to_string(options.server_max_threads)};
     }
-    auto started = LaunchedServer::Start(options.server_binary, options.memory_only, arguments);
+    auto started = client::LocalServer::Start(options.server_binary, server_options);
     if (!started.ok()) return Failure(started.status().message());
     launched = std::move(started).value();
     address = launched->address();

@@ -1,5 +1,6 @@
-// posix_spawn of the server with its output redirected, then a poll of its port file.
-#include "launched_server.h"
+// posix_spawn of the server with its output redirected, then a poll of the port file
+// it writes once it listens (--port-file).
+#include "local_server.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -9,21 +10,23 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <thread>
+#include <utility>
 
 extern char** environ;
 
-namespace relmap::load {
+namespace relmap::client {
 namespace {
 
-// A new directory $TMPDIR/relmap-load-XXXXXX (or under /tmp).
+// A new directory $TMPDIR/relmap-server-XXXXXX (or under /tmp).
 StatusOr<std::string> MakeTemporaryDirectory() {
   const char* base = std::getenv("TMPDIR");
   std::string pattern =
-      std::string(base != nullptr && *base != '\0' ? base : "/tmp") + "/relmap-load-XXXXXX";
+      std::string(base != nullptr && *base != '\0' ? base : "/tmp") + "/relmap-server-XXXXXX";
   if (::mkdtemp(pattern.data()) == nullptr) {
     return InternalError("cannot create a temporary directory like " + pattern);
   }
@@ -32,20 +35,24 @@ StatusOr<std::string> MakeTemporaryDirectory() {
 
 }  // namespace
 
-StatusOr<std::unique_ptr<LaunchedServer>> LaunchedServer::Start(
-    const std::string& binary, bool memory_only, const std::vector<std::string>& extra_arguments) {
+LocalServer::LocalServer(std::string directory, std::string log_path, pid_t pid)
+    : directory_(std::move(directory)), log_path_(std::move(log_path)), pid_(pid) {}
+
+StatusOr<std::unique_ptr<LocalServer>> LocalServer::Start(const std::string& binary,
+                                                          const LocalServerOptions& options) {
   if (::access(binary.c_str(), X_OK) != 0) {
-    return NotFoundError("no executable server binary at " + binary + " (see --server-binary)");
+    return NotFoundError("no executable relmap-server at " + binary);
   }
   StatusOr<std::string> directory = MakeTemporaryDirectory();
   if (!directory.ok()) return directory.status();
   const std::string port_file = *directory + "/port";
-  const std::string log_file = *directory + "/server.log";
+  const std::string log_path =
+      options.log_path.empty() ? *directory + "/server.log" : options.log_path;
 
   std::vector<std::string> arguments = {binary, "--listen", "127.0.0.1:0", "--port-file",
                                         port_file};
-  if (!memory_only) arguments.insert(arguments.end(), {"--data-dir", *directory + "/data"});
-  arguments.insert(arguments.end(), extra_arguments.begin(), extra_arguments.end());
+  if (!options.memory_only) arguments.insert(arguments.end(), {"--data-dir", *directory + "/data"});
+  arguments.insert(arguments.end(), options.extra_arguments.begin(), options.extra_arguments.end());
   std::vector<char*> argv;
   for (std::string& argument : arguments) argv.push_back(argument.data());
   argv.push_back(nullptr);
@@ -53,7 +60,7 @@ StatusOr<std::unique_ptr<LaunchedServer>> LaunchedServer::Start(
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_file.c_str(),
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   pid_t pid = -1;
@@ -61,9 +68,9 @@ StatusOr<std::unique_ptr<LaunchedServer>> LaunchedServer::Start(
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) {
     std::filesystem::remove_all(*directory);
-    return InternalError("cannot start " + binary + ": error " + std::to_string(spawned));
+    return InternalError("cannot start " + binary + ": " + std::strerror(spawned));
   }
-  std::unique_ptr<LaunchedServer> server(new LaunchedServer(*directory, pid));
+  std::unique_ptr<LocalServer> server(new LocalServer(*directory, log_path, pid));
 
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(15);
   while (std::chrono::steady_clock::now() < deadline) {
@@ -71,25 +78,23 @@ StatusOr<std::unique_ptr<LaunchedServer>> LaunchedServer::Start(
     int status = 0;
     if (::waitpid(pid, &status, WNOHANG) == pid) {
       server->pid_ = -1;
-      return Status(StatusCode::kUnavailable,
-                    "relmap-server exited at start-up; its log ends:\n" + server->LogTail(2000));
+      return Status(StatusCode::kUnavailable, binary + " exited at start-up; " + log_path +
+                                                  " ends:\n" + server->LogTail(2000));
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  return Status(StatusCode::kUnavailable,
-                "relmap-server wrote no port within 15 s; its log ends:\n" + server->LogTail(2000));
+  return Status(StatusCode::kUnavailable, binary + " wrote no port within 15 s; " + log_path +
+                                              " ends:\n" + server->LogTail(2000));
 }
 
-LaunchedServer::~LaunchedServer() {
+LocalServer::~LocalServer() {
   Stop();
   std::error_code ignored;
   std::filesystem::remove_all(directory_, ignored);
 }
 
-int LaunchedServer::Stop() {
+int LocalServer::Stop() {
   if (pid_ <= 0) return -1;
-  // The server drains its calls for at most 10 s; past 15 s it is hung, and the
-  // benchmark must still end.
   ::kill(pid_, SIGTERM);
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(15);
   int status = 0;
@@ -105,10 +110,10 @@ int LaunchedServer::Stop() {
   return status;
 }
 
-std::string LaunchedServer::LogTail(std::size_t bytes) const {
-  std::ifstream in(directory_ + "/server.log", std::ios::binary);
+std::string LocalServer::LogTail(std::size_t bytes) const {
+  std::ifstream in(log_path_, std::ios::binary);
   const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   return log.size() > bytes ? log.substr(log.size() - bytes) : log;
 }
 
-}  // namespace relmap::load
+}  // namespace relmap::client

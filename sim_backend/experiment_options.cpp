@@ -1,0 +1,216 @@
+// Flag parsing and the usage text, side by side so that they agree.
+#include "experiment_options.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <string_view>
+
+namespace relmap::sim {
+namespace {
+
+constexpr std::string_view kFlags[] = {
+    "scene", "mode",    "iterations", "replications", "seed",     "server",   "server-binary",
+    "out",   "variant", "alpha",      "sampling",     "parallel", "snapshots"};
+
+Status FlagError(std::string_view flag, const std::string& problem) {
+  return InvalidArgumentError("--" + std::string(flag) + " " + problem);
+}
+
+// A whole number in [low, high].
+StatusOr<long long> Integer(std::string_view flag, const std::string& text, long long low,
+                            long long high) {
+  long long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    return FlagError(flag, "expects a whole number, got '" + text + "'");
+  }
+  if (value < low || value > high) {
+    return FlagError(flag, "must be in [" + std::to_string(low) + ", " + std::to_string(high) +
+                               "], got " + text);
+  }
+  return value;
+}
+
+StatusOr<std::uint64_t> Unsigned(std::string_view flag, const std::string& text) {
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    return FlagError(flag, "expects a whole number >= 0, got '" + text + "'");
+  }
+  return value;
+}
+
+// "1,10,100": iterations in [1, iterations], sorted, without repeats.
+StatusOr<std::vector<int>> SnapshotList(const std::string& text, int iterations) {
+  std::vector<int> snapshots;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    StatusOr<long long> iteration =
+        Integer("snapshots", text.substr(start, comma - start), 1, iterations);
+    if (!iteration.ok()) return iteration.status();
+    snapshots.push_back(static_cast<int>(*iteration));
+    start = comma + 1;
+  }
+  std::sort(snapshots.begin(), snapshots.end());
+  snapshots.erase(std::unique(snapshots.begin(), snapshots.end()), snapshots.end());
+  return snapshots;
+}
+
+// The words of a flag that names one of two choices; parsing and naming read the
+// same table.
+template <typename Enum>
+using Words = std::array<std::pair<Enum, const char*>, 2>;
+constexpr Words<LabellingMode> kModes = {
+    {{LabellingMode::kOracle, "oracle"}, {LabellingMode::kPhysical, "physical"}}};
+constexpr Words<TargetSampling> kSamplings = {
+    {{TargetSampling::kChoice, "choice"}, {TargetSampling::kRandom, "random"}}};
+constexpr Words<v1::ClassifierVariant> kVariants = {
+    {{v1::CLASSIFIER_VARIANT_CORRECTED, "corrected"},
+     {v1::CLASSIFIER_VARIANT_PAPER2018, "paper2018"}}};
+
+// `*text`, if given, as one of `words` into `*out`.
+template <typename Enum>
+Status ParseWord(std::string_view flag, const std::string* text, const Words<Enum>& words,
+                 Enum* out) {
+  if (text == nullptr) return OkStatus();
+  for (const auto& [value, word] : words) {
+    if (*text == word) {
+      *out = value;
+      return OkStatus();
+    }
+  }
+  return FlagError(flag, std::string("is ") + words[0].second + " or " + words[1].second +
+                             ", got '" + *text + "'");
+}
+
+template <typename Enum>
+const char* WordOf(const Words<Enum>& words, Enum value) {
+  for (const auto& [candidate, word] : words) {
+    if (candidate == value) return word;
+  }
+  return "unspecified";
+}
+
+// 1, 10, 100, ... below `iterations`, then `iterations` itself.
+std::vector<int> DefaultSnapshots(int iterations) {
+  std::vector<int> snapshots;
+  for (long long i = 1; i < iterations; i *= 10) snapshots.push_back(static_cast<int>(i));
+  snapshots.push_back(iterations);
+  return snapshots;
+}
+
+}  // namespace
+
+const char kRunUsage[] =
+    "usage: relmap-sim run --scene <name|file> --out DIR [--mode oracle|physical]\n"
+    "                      [--iterations 100] [--replications 1] [--seed 1]\n"
+    "                      [--server host:port | --server-binary PATH]\n"
+    "                      [--variant corrected|paper2018] [--alpha A]\n"
+    "                      [--sampling choice|random] [--parallel 2]\n"
+    "                      [--snapshots 1,10,100|none]\n"
+    "  --mode        oracle: every object re-spawned each iteration, the target labelled\n"
+    "                with its ground truth (the paper's simplified setup); physical: the\n"
+    "                push happens and the server's change detector labels it\n"
+    "  --seed        replication r uses seed + r for its session, scene and draws\n"
+    "  --server      a running relmap-server; without it relmap-sim starts its own on\n"
+    "                127.0.0.1 (port 0) with a temporary data directory, from\n"
+    "                --server-binary, else relmap-server next to relmap-sim, else the build's\n"
+    "  --alpha       the tolerance-ellipsoid significance level (default: the server's 0.25)\n"
+    "  --sampling    choice: the server's draw from its choice map; random: uniform over\n"
+    "                the usable supervoxels\n"
+    "  --parallel    replications run at once, each its own session (default 2)\n"
+    "  --snapshots   iterations whose relevance and choice maps are saved as PNGs\n"
+    "                (default 1, 10, 100, ... and the last)\n"
+    "Writes DIR/replication-<r>.csv, DIR/summary.json, DIR/{accuracy,precision,recall,\n"
+    "samples,components}.png and DIR/{relevance,choice}-<r>-<iteration>.png.\n"
+    "Exit codes: 0 success, 1 a failed run or server error, 2 bad arguments or files.\n";
+
+StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* argv, int first) {
+  std::map<std::string, std::string, std::less<>> flags;
+  for (int i = first; i < argc; ++i) {
+    const std::string_view word = argv[i];
+    if (!word.starts_with("--"))
+      return InvalidArgumentError("unexpected argument '" + std::string(word) + "'");
+    const std::string_view name = word.substr(2);
+    if (std::find(std::begin(kFlags), std::end(kFlags), name) == std::end(kFlags)) {
+      return InvalidArgumentError("unknown flag " + std::string(word));
+    }
+    if (i + 1 >= argc) return FlagError(name, "needs a value");
+    flags[std::string(name)] = argv[++i];
+  }
+  const auto value = [&](std::string_view name) -> const std::string* {
+    const auto it = flags.find(name);
+    return it == flags.end() ? nullptr : &it->second;
+  };
+
+  ExperimentOptions options;
+  for (const char* required : {"scene", "out"}) {
+    if (value(required) == nullptr || value(required)->empty()) {
+      return FlagError(required, "is required");
+    }
+  }
+  options.scene = *value("scene");
+  options.out = *value("out");
+  if (Status parsed = ParseWord("mode", value("mode"), kModes, &options.mode); !parsed.ok()) {
+    return parsed;
+  }
+  const std::pair<std::string_view, int*> counts[] = {{"iterations", &options.iterations},
+                                                      {"replications", &options.replications},
+                                                      {"parallel", &options.parallel}};
+  for (const auto& [name, field] : counts) {
+    if (const std::string* text = value(name)) {
+      StatusOr<long long> count = Integer(name, *text, 1, 1000000);
+      if (!count.ok()) return count.status();
+      *field = static_cast<int>(*count);
+    }
+  }
+  if (const std::string* seed = value("seed")) {
+    StatusOr<std::uint64_t> parsed = Unsigned("seed", *seed);
+    if (!parsed.ok()) return parsed.status();
+    options.seed = *parsed;
+  }
+  if (const std::string* server = value("server")) options.server = *server;
+  if (const std::string* binary = value("server-binary")) options.server_binary = *binary;
+  if (!options.server.empty() && !options.server_binary.empty()) {
+    return InvalidArgumentError("--server and --server-binary exclude each other");
+  }
+  if (Status parsed = ParseWord("variant", value("variant"), kVariants, &options.variant);
+      !parsed.ok()) {
+    return parsed;
+  }
+  if (const std::string* alpha = value("alpha")) {
+    char* end = nullptr;
+    const double parsed = std::strtod(alpha->c_str(), &end);
+    if (alpha->empty() || *end != '\0' || !(parsed >= 0.0 && parsed <= 1.0)) {
+      return FlagError("alpha", "expects a number in [0, 1], got '" + *alpha + "'");
+    }
+    options.alpha = parsed;
+  }
+  if (Status parsed = ParseWord("sampling", value("sampling"), kSamplings, &options.sampling);
+      !parsed.ok()) {
+    return parsed;
+  }
+  if (const std::string* snapshots = value("snapshots"); snapshots && *snapshots == "none") {
+    options.snapshots.clear();
+  } else if (snapshots) {
+    StatusOr<std::vector<int>> parsed = SnapshotList(*snapshots, options.iterations);
+    if (!parsed.ok()) return parsed.status();
+    options.snapshots = *parsed;
+  } else {
+    options.snapshots = DefaultSnapshots(options.iterations);
+  }
+  return options;
+}
+
+const char* ModeName(LabellingMode mode) { return WordOf(kModes, mode); }
+
+const char* SamplingName(TargetSampling sampling) { return WordOf(kSamplings, sampling); }
+
+const char* VariantName(v1::ClassifierVariant variant) { return WordOf(kVariants, variant); }
+
+}  // namespace relmap::sim

@@ -1,0 +1,67 @@
+// The settings of one `relmap-sim run`: which scene, how it is labelled, how many
+// iterations and replications, which server and classifier, where the results go.
+// Parsed and checked in one place.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "relmap/v1/relevance_service.pb.h"
+
+namespace relmap::sim {
+
+// How the outcome of a push is labelled (issue 5, ALGORITHMS §7).
+enum class LabellingMode {
+  // The paper's simplified setup: every object re-spawned each iteration, the chosen
+  // supervoxel labelled with its ground truth; nothing is pushed.
+  kOracle,
+  // The scene persists, the push happens, and the server's change detector labels it
+  // from the before and after clouds.
+  kPhysical,
+};
+
+// Where the target comes from.
+enum class TargetSampling {
+  kChoice,  // the server's draw from its choice map (§4.3)
+  kRandom,  // a uniform draw over the usable supervoxels, with the runner's seeded RNG
+};
+
+struct ExperimentOptions {
+  std::string scene;  // a scene name or a scene file
+  LabellingMode mode = LabellingMode::kOracle;
+  int iterations = 100;
+  int replications = 1;
+  // Replication r uses seed + r for its session and its scene.
+  std::uint64_t seed = 1;
+  // host:port of a running server; empty: start one (server_launcher.h).
+  std::string server;
+  // The relmap-server to start; empty: the one next to relmap-sim, else the build's.
+  std::string server_binary;
+  std::string out;  // the output directory, created if missing
+  v1::ClassifierVariant variant = v1::CLASSIFIER_VARIANT_CORRECTED;
+  std::optional<double> alpha;  // unset: the server's default (0.25)
+  TargetSampling sampling = TargetSampling::kChoice;
+  // Replications running at once, each its own session on its own thread.
+  int parallel = 2;
+  // Iterations (1-based) whose relevance and choice maps are saved as PNGs.
+  std::vector<int> snapshots;
+};
+
+// The usage text of `relmap-sim run`.
+extern const char kRunUsage[];
+
+// argv[first..argc) as `--name value` pairs. INVALID_ARGUMENT naming the flag for an
+// unknown flag, a missing value, a malformed or out-of-range number, or a missing
+// --scene or --out. Without --snapshots: 1, 10, 100, ... up to and with the last
+// iteration.
+StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* argv, int first);
+
+// The names the summary uses for the enums.
+const char* ModeName(LabellingMode mode);
+const char* SamplingName(TargetSampling sampling);
+const char* VariantName(v1::ClassifierVariant variant);
+
+}  // namespace relmap::sim

@@ -1,0 +1,46 @@
+// The simulated RGB-D camera: one ray per pixel cast into an OdeWorld's space;
+// the nearest hit gives the point, its shaded colour and its body id.
+#pragma once
+
+#include <ode/ode.h>
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "ode_world.h"
+#include "scene_settings.h"
+#include "seeded_random.h"
+#include "simulated_scene.h"
+
+namespace relmap::sim {
+
+struct RayHit {
+  double distance = 0;     // metres along the ray
+  Eigen::Vector3d normal;  // unit, facing the ray's origin
+  dGeomID geom = nullptr;
+};
+
+class RayCamera {
+ public:
+  RayCamera();  // the ray geom, outside any space, reused for every pixel
+  ~RayCamera();
+  RayCamera(const RayCamera&) = delete;
+  RayCamera& operator=(const RayCamera&) = delete;
+
+  // An organized frame (see simulated_scene.h): points in the camera frame,
+  // colours as albedo * (ambient + (1 - ambient) max(0, n . l)), NaN and kNoBody
+  // where nothing is hit within [min_range, max_range]. `noise` draws the depth
+  // noise when camera.depth_noise_sigma > 0.
+  CameraFrame Render(const CameraModel& camera, const LightSettings& light, OdeWorld& world,
+                     SeededRandom& noise);
+
+  // The nearest hit of the ray origin + t * direction (unit), 0 <= t <= length,
+  // among enabled geoms (only static ones when `static_only`), the pusher never.
+  std::optional<RayHit> Cast(OdeWorld& world, const Eigen::Vector3d& origin,
+                             const Eigen::Vector3d& direction, double length, bool static_only);
+
+ private:
+  dGeomID ray_ = nullptr;
+};
+
+}  // namespace relmap::sim

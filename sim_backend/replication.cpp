@@ -1,0 +1,230 @@
+// The loop of one session, stage by stage, each timed.
+#include "replication.h"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <utility>
+
+#include "ground_truth.h"
+#include "map_snapshots.h"
+#include "packed_cloud.h"
+#include "seeds.h"
+#include "target_choice.h"
+
+namespace relmap::sim {
+
+const char kIterationOrder[] =
+    "capture, ComputeMaps, score, choose the target, label (oracle: ground truth; physical: "
+    "push, capture, change detector), PostOutcome (learned at once); the map scored at "
+    "iteration i has learned the samples of iterations 1..i-1";
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// "replication-<r>-iteration-<i>": the same outcome posted twice (a retry) is learned
+// once; unique within a session, which is all the server asks.
+std::string RequestId(int replication, int iteration) {
+  std::string id = "replication-";
+  id += std::to_string(replication);
+  id += "-iteration-";
+  id += std::to_string(iteration);
+  return id;
+}
+
+Status FromGrpc(const grpc::Status& status, const char* call) {
+  if (status.ok()) return OkStatus();
+  return Status(static_cast<StatusCode>(status.error_code()),
+                std::string(call) + ": " + status.error_message());
+}
+
+ModelCounts CountsOf(const v1::SessionStats& stats) {
+  return {stats.moveable_samples(), stats.non_moveable_samples(), stats.moveable_components(),
+          stats.non_moveable_components()};
+}
+
+class Replication {
+ public:
+  Replication(const ExperimentOptions& options, int replication, SimulatedScene& scene,
+              client::RelevanceClient& client)
+      : options_(options),
+        replication_(replication),
+        seed_(options.seed + static_cast<std::uint64_t>(replication)),
+        scene_(scene),
+        client_(client) {}
+
+  ReplicationResult Run(const std::function<void(const IterationRecord&)>& after_iteration) {
+    ReplicationResult result;
+    result.replication = replication_;
+    result.seed = seed_;
+    Status status = CreateSession();
+    result.session_id = session_.id;
+    for (int i = 1; status.ok() && i <= options_.iterations; ++i) {
+      StatusOr<IterationRecord> record = Iterate(i);
+      if (!record.ok()) {
+        status = record.status();
+        break;
+      }
+      result.iterations.push_back(std::move(*record));
+      if (after_iteration) after_iteration(result.iterations.back());
+    }
+    if (!status.ok()) {
+      result.error = "replication " + std::to_string(replication_) + ", iteration " +
+                     std::to_string(result.iterations.size() + 1) + ": " + status.message();
+    }
+    return result;
+  }
+
+ private:
+  Status CreateSession() {
+    v1::SessionConfig config;
+    config.set_seed(seed_);
+    config.mutable_classifier()->set_variant(options_.variant);
+    if (options_.alpha) config.mutable_classifier()->set_alpha(*options_.alpha);
+    return FromGrpc(client_.CreateSession(config, &session_), "CreateSession");
+  }
+
+  StatusOr<IterationRecord> Iterate(int iteration) {
+    const Clock::time_point start = Clock::now();
+    IterationRecord record;
+    record.iteration = iteration;
+    IterationTimings& t = record.timings;
+
+    Clock::time_point stage = Clock::now();
+    if (options_.mode == LabellingMode::kOracle) {
+      scene_.Respawn(IterationSeed(seed_, SeedStream::kRespawn, iteration));
+      t.respawn_ms = MillisecondsSince(stage);
+      stage = Clock::now();
+    }
+    CameraFrame frame = Capture();
+    const v1::Cloud cloud = PackCloud(frame);
+    t.capture_ms = MillisecondsSince(stage);
+
+    stage = Clock::now();
+    v1::ComputeMapsResponse maps;
+    Status status = FromGrpc(
+        client_.ComputeMaps(session_, cloud, &maps, client::PointLabels::kInclude), "ComputeMaps");
+    if (!status.ok()) return status;
+    t.maps_ms = MillisecondsSince(stage);
+    t.server_maps_ms = maps.timings().total_ms();
+    record.supervoxels = static_cast<std::size_t>(maps.supervoxels_size());
+
+    stage = Clock::now();
+    StatusOr<std::vector<bool>> object = SupervoxelGroundTruth(
+        frame, maps, [this](std::int32_t body) { return scene_.IsMoveable(body); });
+    if (!object.ok()) return object.status();
+    Score(maps, *object, &record);
+    StatusOr<std::optional<int>> target = ChooseTarget(
+        maps, options_.sampling, IterationSeed(seed_, SeedStream::kRandomTarget, iteration));
+    if (!target.ok()) return target.status();
+    t.evaluation_ms = MillisecondsSince(stage);
+
+    if (std::binary_search(options_.snapshots.begin(), options_.snapshots.end(), iteration)) {
+      stage = Clock::now();
+      status = WriteMapSnapshots(frame, maps, options_.out, replication_, iteration);
+      if (!status.ok()) return status;
+      t.snapshot_ms = MillisecondsSince(stage);
+    }
+
+    if (target->has_value()) {
+      status = LabelAndLearn(iteration, maps, **target,
+                             (*object)[static_cast<std::size_t>(**target)], &record);
+      if (!status.ok()) return status;
+    }
+    record.mislabelled = mislabelled_;
+    record.model = model_;
+    t.iteration_ms = MillisecondsSince(start);
+    return record;
+  }
+
+  // The scene as it is now. In physical mode after a push, that is what the after-push
+  // frame already shows: nothing has moved since.
+  CameraFrame Capture() {
+    if (after_push_) {
+      CameraFrame frame = std::move(*after_push_);
+      after_push_.reset();
+      return frame;
+    }
+    return scene_.Capture();
+  }
+
+  // Both §6 scores of the relevance map. The metrics are the one implementation of §6
+  // (exploration/metrics.h), shared by the server's tools and the simulator.
+  static void Score(const v1::ComputeMapsResponse& maps, const std::vector<bool>& object,
+                    IterationRecord* record) {
+    Eigen::VectorXd relevance(maps.supervoxels_size());
+    for (int i = 0; i < maps.supervoxels_size(); ++i)
+      relevance[i] = maps.supervoxels(i).relevance();
+    record->thresholded = exploration::ThresholdedSoftScores(relevance, object);
+    record->soft = exploration::SoftScores(relevance, object);
+  }
+
+  // Pushes (physical) and posts the outcome of supervoxel `index` of `maps`, whose
+  // ground truth is `truth`. A push the simulator could not execute (every approach
+  // blocked) says nothing about the target: no outcome is posted for it.
+  Status LabelAndLearn(int iteration, const v1::ComputeMapsResponse& maps, int index, bool truth,
+                       IterationRecord* record) {
+    const v1::Supervoxel& target = maps.supervoxels(index);
+    record->target = target.id();
+    const std::string request_id = RequestId(replication_, iteration);
+    v1::PostOutcomeResponse response;
+    grpc::Status posted;
+    if (options_.mode == LabellingMode::kOracle) {
+      const Clock::time_point stage = Clock::now();
+      posted = client_.PostOutcome(session_, maps.frame_id(), target.id(),
+                                   truth ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE, request_id,
+                                   &response);
+      record->timings.outcome_ms = MillisecondsSince(stage);
+    } else {
+      Clock::time_point stage = Clock::now();
+      const Eigen::Vector3f centroid(target.centroid().x(), target.centroid().y(),
+                                     target.centroid().z());
+      record->push = scene_.Push(centroid, IterationSeed(seed_, SeedStream::kPush, iteration));
+      if (!record->push->executed) {
+        record->timings.push_ms = MillisecondsSince(stage);
+        return OkStatus();
+      }
+      after_push_ = scene_.Capture();
+      const v1::Cloud after = PackCloud(*after_push_);
+      record->timings.push_ms = MillisecondsSince(stage);
+      stage = Clock::now();
+      posted =
+          client_.PostOutcome(session_, maps.frame_id(), target.id(), after, request_id, &response);
+      record->timings.outcome_ms = MillisecondsSince(stage);
+    }
+    if (Status status = FromGrpc(posted, "PostOutcome"); !status.ok()) return status;
+    const bool label = response.label() == v1::LABEL_MOVEABLE;
+    record->label = label;
+    record->truth = truth;
+    if (label != truth) ++mislabelled_;
+    model_ = CountsOf(response.stats());
+    return OkStatus();
+  }
+
+  const ExperimentOptions& options_;
+  const int replication_;
+  const std::uint64_t seed_;
+  SimulatedScene& scene_;
+  client::RelevanceClient& client_;
+  client::SessionHandle session_;
+  std::optional<CameraFrame> after_push_;
+  std::uint64_t mislabelled_ = 0;
+  ModelCounts model_;
+};
+
+}  // namespace
+
+ReplicationResult RunReplication(
+    const ExperimentOptions& options, int replication, SimulatedScene& scene,
+    client::RelevanceClient& client,
+    const std::function<void(const IterationRecord&)>& after_iteration) {
+  return Replication(options, replication, scene, client).Run(after_iteration);
+}
+
+}  // namespace relmap::sim

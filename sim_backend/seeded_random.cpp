@@ -1,0 +1,49 @@
+// Explicit draws from std::mt19937_64 (see seeded_random.h for why).
+#include "seeded_random.h"
+
+#include <cmath>
+
+namespace relmap::sim {
+namespace {
+constexpr double kTwoPi = 6.28318530717958647692;
+}  // namespace
+
+std::uint64_t Mix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+SeededRandom::SeededRandom(std::uint64_t seed, std::uint64_t stream)
+    : engine_(Mix64(seed ^ Mix64(stream))) {}
+
+double SeededRandom::Uniform01() {
+  // The top 53 bits as a fraction: exactly representable, never 1.
+  return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+}
+
+double SeededRandom::Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform01(); }
+
+std::uint64_t SeededRandom::Below(std::uint64_t n) {
+  // Reject the top partial block of the 2^64 range so every residue is equally likely.
+  const std::uint64_t limit = ~std::uint64_t{0} - (~std::uint64_t{0} % n);
+  std::uint64_t x = engine_();
+  while (x >= limit) x = engine_();
+  return x % n;
+}
+
+double SeededRandom::Gaussian() {
+  const double u1 = 1.0 - Uniform01();  // (0, 1]: log is finite
+  const double u2 = Uniform01();
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
+}
+
+Eigen::Quaterniond SeededRandom::Rotation() {
+  const double u1 = Uniform01(), u2 = Uniform01(), u3 = Uniform01();
+  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+  return Eigen::Quaterniond(a * std::sin(kTwoPi * u2), a * std::cos(kTwoPi * u2),
+                            b * std::sin(kTwoPi * u3), b * std::cos(kTwoPi * u3));
+}
+
+}  // namespace relmap::sim

@@ -1,0 +1,176 @@
+// Scene files: the shipped ones parse, and bad ones are refused with errors that
+// name the file and the field.
+#include "scene_file.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace relmap::sim {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A valid scene with `object` as its only object.
+std::string SceneWith(const std::string& object) {
+  return R"({
+    "name": "Tiny",
+    "camera": {"position": {"x": -1, "z": 1}, "look_at": {"x": 0, "y": 0, "z": 0}},
+    "static_bodies": [{"name": "table", "shape": "box", "size": {"x": 1, "y": 1, "z": 0.1},
+                       "color": {"r": 200, "g": 200, "b": 200},
+                       "pose": {"position": {"z": -0.05}}}],
+    "objects": [)" +
+         object + R"(]
+  })";
+}
+
+constexpr char kBall[] = R"({"shape": "sphere", "radius": 0.03, "color": {"r": 1},
+    "mass": 0.1, "spawn": {"min": {"z": 0.03}, "max": {"z": 0.03}}})";
+
+std::string ErrorOf(const std::string& json, const std::string& label = "Tiny.json") {
+  const StatusOr<Scene> scene = ParseScene(json, label);
+  EXPECT_FALSE(scene.ok());
+  return scene.ok() ? "" : scene.status().message();
+}
+
+TEST(SceneFile, ShipsThePapersSixSetups) {
+  std::vector<std::string> names;
+  for (const std::string& path : ShippedSceneFiles()) {
+    names.push_back(std::filesystem::path(path).stem().string());
+  }
+  EXPECT_THAT(names, ::testing::UnorderedElementsAre("MoveableBalls", "MoveableBricks1",
+                                                     "MoveableBricks2", "WhiteMoveableBalls",
+                                                     "WhiteMoveableBricks", "SimKitchen"));
+}
+
+TEST(SceneFile, EveryShippedSceneParsesAndNamesItselfAfterItsFile) {
+  for (const std::string& path : ShippedSceneFiles()) {
+    const StatusOr<SceneFile> file = ReadSceneFile(path);
+    ASSERT_TRUE(file.ok()) << file.status().message();
+    EXPECT_EQ(file->scene.name(), std::filesystem::path(path).stem().string());
+    EXPECT_GT(file->scene.objects_size(), 0);
+  }
+}
+
+TEST(SceneFile, FindsAShippedSceneByNameOrByPath) {
+  const StatusOr<std::string> by_name = FindSceneFile("MoveableBalls");
+  ASSERT_TRUE(by_name.ok()) << by_name.status().message();
+  EXPECT_EQ(std::filesystem::path(*by_name).filename(), "MoveableBalls.json");
+  const StatusOr<std::string> by_path = FindSceneFile(*by_name);
+  ASSERT_TRUE(by_path.ok());
+  EXPECT_EQ(*by_path, *by_name);
+}
+
+TEST(SceneFile, AnUnknownSceneIsNotFoundAndTheShippedOnesAreListed) {
+  const StatusOr<std::string> found = FindSceneFile("NoSuchScene");
+  ASSERT_FALSE(found.ok());
+  EXPECT_EQ(found.status().code(), StatusCode::kNotFound);
+  EXPECT_THAT(found.status().message(), HasSubstr("NoSuchScene"));
+  EXPECT_THAT(found.status().message(), HasSubstr("MoveableBalls"));
+}
+
+TEST(SceneFile, AcceptsAMinimalScene) {
+  const StatusOr<Scene> scene = ParseScene(SceneWith(kBall), "Tiny.json");
+  EXPECT_TRUE(scene.ok()) << scene.status().message();
+}
+
+TEST(SceneFile, ANegativeSizeNamesTheFileTheFieldAndTheValue) {
+  const std::string brick = R"({"shape": "box", "size": {"x": -0.1, "y": 0.05, "z": 0.05},
+      "color": {"r": 1}, "mass": 0.1, "spawn": {}})";
+  EXPECT_EQ(ErrorOf(SceneWith(brick), "MoveableBricks1.json"),
+            "MoveableBricks1.json: objects[0].size.x must be > 0, got -0.1");
+}
+
+TEST(SceneFile, AMissingFieldIsNamedWithWhatNeedsIt) {
+  const std::string no_radius = R"({"shape": "sphere", "color": {"r": 1}, "mass": 0.1,
+      "spawn": {}})";
+  EXPECT_THAT(ErrorOf(SceneWith(no_radius)),
+              HasSubstr("Tiny.json: objects[0].radius is missing (a sphere needs it)"));
+  const std::string no_mass = R"({"shape": "sphere", "radius": 0.03, "color": {"r": 1},
+      "spawn": {}})";
+  EXPECT_THAT(ErrorOf(SceneWith(no_mass)), HasSubstr("objects[0].mass is missing"));
+  EXPECT_THAT(ErrorOf(R"({"name": "NoCamera", "objects": [)" + std::string(kBall) + "]}"),
+              HasSubstr("Tiny.json: camera is missing"));
+}
+
+TEST(SceneFile, AnUnknownShapeListsTheKnownOnes) {
+  const std::string cone = R"({"shape": "cone", "color": {"r": 1}, "mass": 0.1, "spawn": {}})";
+  EXPECT_THAT(ErrorOf(SceneWith(cone)),
+              HasSubstr("objects[0].shape is an unknown shape 'cone' (expected box, sphere, "
+                        "cylinder, capsule, composite or mesh)"));
+}
+
+TEST(SceneFile, AnUnknownTextureListsTheKnownOnes) {
+  const std::string marble = R"({"shape": "sphere", "radius": 0.03, "color": {"r": 1},
+      "texture": {"kind": "marble"}, "mass": 0.1, "spawn": {}})";
+  EXPECT_THAT(ErrorOf(SceneWith(marble)),
+              HasSubstr("objects[0].texture.kind is an unknown texture 'marble' (expected wood "
+                        "or checker)"));
+}
+
+TEST(SceneFile, MalformedJsonNamesTheFile) {
+  const std::string message = ErrorOf(R"({"name": "Broken", "objects": [)");
+  EXPECT_THAT(message, HasSubstr("Tiny.json: not a valid scene file"));
+}
+
+TEST(SceneFile, AnUnknownFieldIsAnErrorNotIgnored) {
+  const std::string message = ErrorOf(SceneWith(R"({"shape": "sphere", "radius": 0.03,
+      "colour": {"r": 1}, "mass": 0.1, "spawn": {}})"));
+  EXPECT_THAT(message, HasSubstr("Tiny.json: not a valid scene file"));
+  EXPECT_THAT(message, HasSubstr("colour"));
+}
+
+TEST(SceneFile, FieldsThatDoNotApplyToTheShapeAreRefused) {
+  EXPECT_THAT(ErrorOf(SceneWith(R"({"shape": "sphere", "radius": 0.03, "length": 0.1,
+      "color": {"r": 1}, "mass": 0.1, "spawn": {}})")),
+              HasSubstr("objects[0].length does not apply to a sphere"));
+}
+
+TEST(SceneFile, EveryProblemIsReportedOnItsOwnLine) {
+  const std::string message = ErrorOf(SceneWith(R"({"shape": "box",
+      "size": {"x": 0, "y": -1, "z": 0.1}, "color": {"r": 300}, "mass": -2, "spawn": {}})"));
+  EXPECT_THAT(message, HasSubstr("Tiny.json: objects[0].size.x must be > 0, got 0\n"));
+  EXPECT_THAT(message, HasSubstr("Tiny.json: objects[0].size.y must be > 0, got -1\n"));
+  EXPECT_THAT(message, HasSubstr("Tiny.json: objects[0].color.r must be in [0, 255], got 300"));
+  EXPECT_THAT(message, HasSubstr("Tiny.json: objects[0].mass must be > 0, got -2"));
+}
+
+TEST(SceneFile, NonFiniteNumbersAreRefused) {
+  EXPECT_THAT(ErrorOf(SceneWith(R"({"shape": "sphere", "radius": "NaN", "color": {"r": 1},
+      "mass": 0.1, "spawn": {}})")),
+              HasSubstr("objects[0].radius must be a finite number, got nan"));
+}
+
+TEST(SceneFile, ASpawnRegionMustNotBeInsideOut) {
+  EXPECT_THAT(ErrorOf(SceneWith(R"({"shape": "sphere", "radius": 0.03, "color": {"r": 1},
+      "mass": 0.1, "spawn": {"min": {"x": 0.2}, "max": {"x": 0.1}}})")),
+              HasSubstr("objects[0].spawn.min.x must be <= max.x (0.1), got 0.2"));
+}
+
+TEST(SceneFile, CompositesNestOneLevelOnly) {
+  EXPECT_THAT(ErrorOf(SceneWith(R"({"shape": "composite", "color": {"r": 1}, "mass": 0.1,
+      "spawn": {}, "parts": [{"shape": "composite", "parts": []}]})")),
+              HasSubstr("objects[0].parts[0].shape cannot be composite inside a composite"));
+}
+
+TEST(SceneFile, AMeshMustIndexItsVerticesAndAMoveableOneMustBeClosed) {
+  EXPECT_THAT(ErrorOf(SceneWith(R"({"shape": "mesh", "color": {"r": 1}, "mass": 0.1,
+      "spawn": {}, "mesh": {"vertices": [0, 0, 0, 1, 0, 0, 0, 1, 0], "indices": [0, 1, 3]}})")),
+              HasSubstr("objects[0].mesh.indices[2] must be < 3 (the vertex count), got 3"));
+  // One triangle encloses no volume: it cannot have a mass distribution.
+  EXPECT_THAT(ErrorOf(SceneWith(R"({"shape": "mesh", "color": {"r": 1}, "mass": 0.1,
+      "spawn": {}, "mesh": {"vertices": [0, 0, 0, 1, 0, 0, 0, 1, 0], "indices": [0, 1, 2]}})")),
+              HasSubstr("objects[0].mesh must be closed with outward triangles"));
+}
+
+TEST(SceneFile, TheCameraNeedsExactlyOneOrientation) {
+  const std::string both = R"({"name": "Both", "camera": {"position": {"x": -1},
+      "look_at": {}, "rpy_deg": {}}, "objects": [)" +
+                           std::string(kBall) + "]}";
+  EXPECT_THAT(ErrorOf(both), HasSubstr("camera needs exactly one of look_at and rpy_deg"));
+}
+
+}  // namespace
+}  // namespace relmap::sim
