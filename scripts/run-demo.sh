@@ -1,6 +1,5 @@
 #!/usr/bin/env bash
-# The main job, for what exists so far (classifier, perception, server and client;
-# the simulated pusher comes with the sim_backend issue): builds, then
+# The main job: builds everything, then
 #  1. streams a seeded 48-d non-convex problem (XOR blobs) through relmap-cmm
 #     for each classifier configuration, prints the learning curves and plots
 #     them to out/demo/learning_curves.png;
@@ -10,7 +9,10 @@
 #  4. starts relmap-server on a loopback port and, through the relmap CLI, asks
 #     for the maps of the real cloud (PNG renderings), posts the outcome of the
 #     drawn push as the after-push cloud (the change detector labels it), and
-#     streams the XOR training set into a feature session with a progress bar.
+#     streams the XOR training set into a feature session with a progress bar;
+#  5. runs the simulator (relmap-sim, which starts its own relmap-server) on the
+#     paper's MoveableBalls scene: 100 oracle push iterations, 2 replications, with
+#     a progress bar; maps and learning curves as PNGs in out/demo/sim/.
 # Everything lands in out/demo/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -82,4 +84,8 @@ fi
 features=$("$relmap" session create --seed "$seed" --feature-dimension 48 --variant corrected)
 export RELMAP_TOKEN=$(json_field sessionToken <<<"$features")
 "$relmap" stream "$(json_field sessionId <<<"$features")" "$out/train.csv" --batch 100 | tee "$out/stream.json"
-echo "reports, learning curves, segmentation.png, relevance.png and choice.png are in $out/"
+echo "== relmap-sim: MoveableBalls, oracle mode (the paper's simplified setup)"
+build/sim_backend/relmap-sim run --scene MoveableBalls --mode oracle --iterations "${ITERATIONS:-100}" \
+  --replications 2 --seed "$seed" --out "$out/sim"
+echo "reports, learning curves, segmentation.png, relevance.png and choice.png are in $out/;"
+echo "the simulated run's maps (relevance-*.png, choice-*.png) and curves (accuracy.png, ...) in $out/sim/"
