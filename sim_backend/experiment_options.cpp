@@ -12,9 +12,13 @@
 namespace relmap::sim {
 namespace {
 
-constexpr std::string_view kFlags[] = {
-    "scene", "mode",    "iterations", "replications", "seed",     "server",   "server-binary",
-    "out",   "variant", "alpha",      "sampling",     "parallel", "snapshots"};
+constexpr std::string_view kFlags[] = {"scene",         "mode",
+                                       "iterations",    "replications",
+                                       "seed",          "server",
+                                       "server-binary", "out",
+                                       "variant",       "alpha",
+                                       "sampling",      "parallel",
+                                       "snapshots",     "change-min-neighbours"};
 
 Status FlagError(std::string_view flag, const std::string& problem) {
   return InvalidArgumentError("--" + std::string(flag) + " " + problem);
@@ -112,7 +116,7 @@ const char kRunUsage[] =
     "                      [--server host:port | --server-binary PATH]\n"
     "                      [--variant corrected|paper2018] [--alpha A]\n"
     "                      [--sampling choice|random] [--parallel 2]\n"
-    "                      [--snapshots 1,10,100|none]\n"
+    "                      [--snapshots 1,10,100|none] [--change-min-neighbours N]\n"
     "  --mode        oracle: every object re-spawned each iteration, the target labelled\n"
     "                with its ground truth (the paper's simplified setup); physical: the\n"
     "                push happens and the server's change detector labels it\n"
@@ -126,6 +130,9 @@ const char kRunUsage[] =
     "  --parallel    replications run at once, each its own session (default 2)\n"
     "  --snapshots   iterations whose relevance and choice maps are saved as PNGs\n"
     "                (default 1, 10, 100, ... and the last)\n"
+    "  --change-min-neighbours  physical mode: the change detector's radius filter keeps\n"
+    "                points with this many neighbours in 1 cm (default 20 scaled by the\n"
+    "                camera's point density against a 640x480 Kinect)\n"
     "Writes DIR/replication-<r>.csv, DIR/summary.json, DIR/{accuracy,precision,recall,\n"
     "samples,components}.png and DIR/{relevance,choice}-<r>-<iteration>.png.\n"
     "Exit codes: 0 success, 1 a failed run or server error, 2 bad arguments or files.\n";
@@ -190,6 +197,15 @@ StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* 
       return FlagError("alpha", "expects a number in [0, 1], got '" + *alpha + "'");
     }
     options.alpha = parsed;
+  }
+  if (const std::string* neighbours = value("change-min-neighbours")) {
+    char* end = nullptr;
+    const long parsed = std::strtol(neighbours->c_str(), &end, 10);
+    if (neighbours->empty() || *end != '\0' || parsed < 1 || parsed > 1000) {
+      return FlagError("change-min-neighbours",
+                       "expects an integer in [1, 1000], got '" + *neighbours + "'");
+    }
+    options.change_min_neighbours = static_cast<int>(parsed);
   }
   if (Status parsed = ParseWord("sampling", value("sampling"), kSamplings, &options.sampling);
       !parsed.ok()) {

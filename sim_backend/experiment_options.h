@@ -44,6 +44,10 @@ struct ExperimentOptions {
   v1::ClassifierVariant variant = v1::CLASSIFIER_VARIANT_CORRECTED;
   std::optional<double> alpha;  // unset: the server's default (0.25)
   TargetSampling sampling = TargetSampling::kChoice;
+  // Physical mode: the change detector's radius filter keeps points with at least this
+  // many neighbours within 1 cm (ALGORITHMS §5, 20 for a 640×480 Kinect). Unset: 20
+  // scaled by the camera's point density, (width / 640)², at least 3.
+  std::optional<int> change_min_neighbours;
   // Replications running at once, each its own session on its own thread.
   int parallel = 2;
   // Iterations (1-based) whose relevance and choice maps are saved as PNGs.

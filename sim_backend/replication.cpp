@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -87,7 +88,18 @@ class Replication {
     config.set_seed(seed_);
     config.mutable_classifier()->set_variant(options_.variant);
     if (options_.alpha) config.mutable_classifier()->set_alpha(*options_.alpha);
+    if (options_.mode == LabellingMode::kPhysical) {
+      config.mutable_change_detector()->set_ror_min_neighbours(
+          options_.change_min_neighbours.value_or(ScaledMinNeighbours(scene_.Capture().width)));
+    }
     return FromGrpc(client_.CreateSession(config, &session_), "CreateSession");
+  }
+
+  // ALGORITHMS §5's 20 neighbours within 1 cm assume a 640×480 Kinect; a camera of the
+  // same field of view and `width` columns sees (width / 640)² as many points per area.
+  static int ScaledMinNeighbours(std::uint32_t width) {
+    const double density = static_cast<double>(width) / 640.0;
+    return std::max(3, static_cast<int>(std::lround(20.0 * density * density)));
   }
 
   StatusOr<IterationRecord> Iterate(int iteration) {

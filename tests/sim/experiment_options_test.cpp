@@ -76,5 +76,18 @@ TEST(ExperimentOptions, MisuseIsAnInvalidArgumentNamingTheFlag) {
   }
 }
 
+TEST(ExperimentOptions, TheChangeDetectorsNeighbourCountIsAPositiveInteger) {
+  const StatusOr<ExperimentOptions> given =
+      Parse({"--scene", "s", "--out", "d", "--change-min-neighbours", "7"});
+  ASSERT_TRUE(given.ok()) << given.status().message();
+  EXPECT_EQ(given->change_min_neighbours, 7);
+  EXPECT_FALSE(Parse({"--scene", "s", "--out", "d"})->change_min_neighbours.has_value());
+  for (const char* bad : {"0", "-3", "2.5", "many"}) {
+    const StatusOr<ExperimentOptions> refused =
+        Parse({"--scene", "s", "--out", "d", "--change-min-neighbours", bad});
+    EXPECT_EQ(refused.status().code(), StatusCode::kInvalidArgument) << bad;
+  }
+}
+
 }  // namespace
 }  // namespace relmap::sim
