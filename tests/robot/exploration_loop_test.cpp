@@ -11,8 +11,8 @@
 #include <fstream>
 
 #include "exec_driver.h"
+#include "integration/suite_server.h"
 #include "integration/test_support.h"
-#include "local_server.h"
 #include "ode_scene.h"
 #include "replay.h"
 #include "run_record.h"
@@ -58,16 +58,9 @@ class ExplorationLoopTest : public ::testing::Test {
     options.memory_only = true;
     options.log_path =
         ::testing::TempDir() + "/relmap_robot_server_" + std::to_string(::getpid()) + ".log";
-    StatusOr<std::unique_ptr<client::LocalServer>> started =
-        client::LocalServer::Start(RELMAP_SERVER_BINARY, options);
-    ASSERT_TRUE(started.ok()) << started.status().message();
-    server_ = std::move(*started).release();
-    client_ = new client::RelevanceClient(server_->address());
+    suite_.Start(options);
   }
-  static void TearDownTestSuite() {
-    delete client_;
-    delete server_;
-  }
+  static void TearDownTestSuite() { suite_.Stop(); }
 
   // Recorded into run_dir_; a 160×120 camera sees 1/16 of a Kinect's points per area,
   // hence the change detector's 3 neighbours instead of 20 (as relmap-sim scales it).
@@ -89,7 +82,7 @@ class ExplorationLoopTest : public ::testing::Test {
                            client::SessionHandle* session = nullptr,
                            sim::SimulatedScene* scene = nullptr) {
     SimSource source(scene != nullptr ? *scene : scene_);
-    ExplorationLoop loop(config, *client_, source, driver, nullptr, nullptr);
+    ExplorationLoop loop(config, suite_.client(), source, driver, nullptr, nullptr);
     if (Status status = loop.Start(); !status.ok()) return status;
     if (session != nullptr) *session = loop.session();
     return loop.Run();
@@ -97,7 +90,7 @@ class ExplorationLoopTest : public ::testing::Test {
 
   static v1::SessionState Export(const client::SessionHandle& session) {
     v1::ExportSessionResponse exported;
-    EXPECT_TRUE(client_->ExportSession(session, &exported).ok());
+    EXPECT_TRUE(suite_.client().ExportSession(session, &exported).ok());
     return exported.state();
   }
 
@@ -110,8 +103,7 @@ class ExplorationLoopTest : public ::testing::Test {
     return status;
   }
 
-  static inline client::LocalServer* server_ = nullptr;
-  static inline client::RelevanceClient* client_ = nullptr;
+  static inline relmap::testing::SuiteServer suite_;
   relmap::testing::TemporaryDirectory run_dir_;
   sim::testing::AnalyticScene scene_{3};
 };
@@ -184,7 +176,7 @@ TEST_F(ExplorationLoopTest, AFailingPushIsRetriedWithFreshFramesAndNothingIsPost
   EXPECT_FALSE(fs::exists(IterationFile(1, "label.json")));
   // Three ComputeMaps, one per attempt.
   v1::GetSessionResponse got;
-  ASSERT_TRUE(client_->GetSession(session, &got).ok());
+  ASSERT_TRUE(suite_.client().GetSession(session, &got).ok());
   EXPECT_EQ(got.stats().frames(), 3u);
 }
 
@@ -207,7 +199,7 @@ TEST_F(ExplorationLoopTest, AStopDuringAPushPostsThatPushAndEndsTheRun) {
   InterruptedDriver driver(stop);
   SimSource source(scene_);
   const RobotConfig config = Config(5);
-  ExplorationLoop loop(config, *client_, source, driver, &stop, nullptr);
+  ExplorationLoop loop(config, suite_.client(), source, driver, &stop, nullptr);
   ASSERT_TRUE(loop.Start().ok());
   StatusOr<RunSummary> summary = loop.Run();
   ASSERT_TRUE(summary.ok()) << summary.status().message();
@@ -252,7 +244,7 @@ TEST_F(ExplorationLoopTest, AReplayedRunLearnsTheSameSamples) {
   ASSERT_TRUE(summary.ok()) << summary.status().message();
   ASSERT_GE(summary->posted, 2);
 
-  StatusOr<ReplayResult> replayed = ReplayRun(run_dir_.path() + "/run", *client_);
+  StatusOr<ReplayResult> replayed = ReplayRun(run_dir_.path() + "/run", suite_.client());
   ASSERT_TRUE(replayed.ok()) << replayed.status().message();
   ASSERT_EQ(static_cast<int>(replayed->iterations.size()), summary->posted);
   for (const ReplayedIteration& iteration : replayed->iterations) {

@@ -10,8 +10,8 @@
 
 #include "curves.h"
 #include "experiment.h"
+#include "integration/suite_server.h"
 #include "integration/test_support.h"
-#include "local_server.h"
 #include "sim/analytic_scene.h"
 
 namespace relmap::sim {
@@ -25,16 +25,9 @@ class RunnerEndToEnd : public ::testing::Test {
         ::testing::TempDir() + "/relmap_sim_runner_server_" + std::to_string(::getpid()) + ".log";
     client::LocalServerOptions server_options;
     server_options.log_path = log_;
-    StatusOr<std::unique_ptr<client::LocalServer>> started =
-        client::LocalServer::Start(RELMAP_SERVER_BINARY, server_options);
-    ASSERT_TRUE(started.ok()) << started.status().message();
-    server_ = std::move(*started).release();
-    client_ = new client::RelevanceClient(server_->address());
+    suite_.Start(server_options);
   }
-  static void TearDownTestSuite() {
-    delete client_;
-    delete server_;
-  }
+  static void TearDownTestSuite() { suite_.Stop(); }
 
   // Runs `options` on analytic scenes into `out_`.
   ExperimentRun Run(ExperimentOptions options, std::uint32_t width = 160,
@@ -46,7 +39,7 @@ class RunnerEndToEnd : public ::testing::Test {
           std::make_unique<testing::AnalyticScene>(seed, width, height));
     };
     StatusOr<ExperimentRun> run =
-        RunExperiment(options, analytic, *client_, server_->address(), true, nullptr);
+        RunExperiment(options, analytic, suite_.client(), suite_.server().address(), true, nullptr);
     EXPECT_TRUE(run.ok()) << run.status().message();
     if (!run.ok()) return {};
     for (const ReplicationResult& r : run->replications) EXPECT_EQ(r.error, "");
@@ -62,8 +55,7 @@ class RunnerEndToEnd : public ::testing::Test {
   }
 
   static inline std::string log_;
-  static inline client::LocalServer* server_ = nullptr;
-  static inline client::RelevanceClient* client_ = nullptr;
+  static inline relmap::testing::SuiteServer suite_;
   relmap::testing::TemporaryDirectory out_;
 };
 
