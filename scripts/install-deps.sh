@@ -13,6 +13,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libssl-dev zlib1g-dev openssl
   python3-grpcio python3-protobuf  # scripts/grpcurl-lite
+  libpq-dev postgresql  # the shared session store and its tests
+  nginx python3-yaml    # the cluster test's load balancer; deploy/ YAML checks
 )
 
 missing=()

@@ -55,6 +55,29 @@ class SessionStore {
 
   // Adds `delta` (non-negative) to the session's counters.
   virtual Status IncrementCounters(std::string_view session_id, const SessionCounters& delta) = 0;
+
+  // Ownership, for a store that several servers share. A server writes a session
+  // only while it owns it, and the store fences every write: once another server
+  // has taken the session over, a write of the former owner is ABORTED and stores
+  // nothing, so two servers never fork one session's history. A store with a
+  // single server (the embedded SQLite file) owns everything: the defaults.
+  //
+  // Takes the session for this server, or renews its hold. OK with
+  // `held_throughout` true when this server has owned it without interruption
+  // since it last acquired it (its copy in memory is current), false when it was
+  // taken now (load the session from the store). Another live server owning it →
+  // UNAVAILABLE with the owner in the message; an unknown session → NOT_FOUND.
+  struct Ownership {
+    bool held_throughout = true;
+  };
+  virtual StatusOr<Ownership> AcquireOwnership(std::string_view session_id) {
+    (void)session_id;
+    return Ownership{};
+  }
+  // Gives the session up, so that another server can take it at once (eviction,
+  // deletion, a draining server). Best effort: a lost release only delays a takeover
+  // until the hold expires.
+  virtual void ReleaseOwnership(std::string_view session_id) { (void)session_id; }
 };
 
 }  // namespace relmap::session
