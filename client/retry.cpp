@@ -14,8 +14,10 @@ bool IsRetryable(const grpc::Status& status, Idempotence idempotence, bool pushb
       (pushback || status.error_message() == kThreadpoolExhausted)) {
     return true;
   }
+  // UNAVAILABLE with a pushback is a relmap server whose session another server
+  // owns for now (a takeover in progress): the call did nothing either.
   return status.error_code() == grpc::StatusCode::UNAVAILABLE &&
-         idempotence == Idempotence::kIdempotent;
+         (pushback || idempotence == Idempotence::kIdempotent);
 }
 
 std::optional<std::chrono::milliseconds> PushbackOf(const grpc::ClientContext& context) {

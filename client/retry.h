@@ -18,9 +18,10 @@ enum class Idempotence { kIdempotent, kNotIdempotent };
 // was full (gRPC answers RESOURCE_EXHAUSTED "Server Threadpool Exhausted" before any
 // handler runs), or it answered RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms
 // trailer (`pushback`: relmap-server's frame admission, which turns a call away
-// before doing anything). For idempotent calls only, also when the connection failed
-// (UNAVAILABLE) and the call may or may not have run. Every other status is the
-// server's answer and is returned as it is.
+// before doing anything), or UNAVAILABLE with such a trailer (a session another
+// server owns in a shared store, for now). For idempotent calls only, also when the connection
+// failed (UNAVAILABLE) and the call may or may not have run. Every other status is the server's
+// answer and is returned as it is.
 bool IsRetryable(const grpc::Status& status, Idempotence idempotence, bool pushback = false);
 
 // The server's grpc-retry-pushback-ms trailer, if `context`'s call ended with one.

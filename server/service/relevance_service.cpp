@@ -110,7 +110,7 @@ std::string RelevanceService::MetricsText() const {
 }
 
 StatusOr<std::shared_ptr<session::Session>> RelevanceService::Authorised(
-    const grpc::ServerContext& context, const std::string& id) const {
+    grpc::ServerContext& context, const std::string& id) const {
   if (id.empty()) return InvalidArgumentError("session_id is required");
   const auto& metadata = context.client_metadata();
   const auto header = metadata.find("authorization");
@@ -127,7 +127,12 @@ StatusOr<std::shared_ptr<session::Session>> RelevanceService::Authorised(
                   "calls on a session need 'authorization: Bearer <session token>' metadata");
   }
   auto session = registry_.Find(id);
-  if (!session.ok()) return session.status();
+  if (!session.ok()) {
+    if (session.status().code() == StatusCode::kUnavailable) {
+      context.AddTrailingMetadata("grpc-retry-pushback-ms", "200");
+    }
+    return session.status();
+  }
   const std::string_view token(header->second.data() + kBearer.size(),
                                header->second.size() - kBearer.size());
   if (!session::TokenMatches(token, (*session)->token_hash())) {
@@ -168,6 +173,7 @@ grpc::Status RelevanceService::CreateSession(grpc::ServerContext* context,
     response->set_session_id(id);
     response->set_session_token(created->token);
     *response->mutable_config() = ProtoFromSettings(created->session->settings());
+    registry_.HandOver(id);
     return grpc::Status::OK;
   });
 }
@@ -405,6 +411,7 @@ grpc::Status RelevanceService::ImportSession(grpc::ServerContext* context,
     response->set_session_id(id);
     response->set_session_token(created->token);
     FillStats(*stats, response->mutable_stats());
+    registry_.HandOver(id);
     return grpc::Status::OK;
   });
 }

@@ -70,8 +70,10 @@ class RelevanceService final : public v1::RelevanceService::Service {
  private:
   // The session `id`, if the call's `authorization: Bearer <token>` matches it:
   // UNAUTHENTICATED without a bearer token, PERMISSION_DENIED with a wrong one,
-  // NOT_FOUND for an unknown session.
-  StatusOr<std::shared_ptr<session::Session>> Authorised(const grpc::ServerContext& context,
+  // NOT_FOUND for an unknown session. UNAVAILABLE while another server owns the
+  // session in a shared store, with a grpc-retry-pushback-ms trailer: nothing ran,
+  // and the session is free once that server lets it go or dies.
+  StatusOr<std::shared_ptr<session::Session>> Authorised(grpc::ServerContext& context,
                                                          const std::string& id) const;
 
   // OK when no admin key is configured or the call's `x-relmap-admin-key`

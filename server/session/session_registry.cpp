@@ -43,10 +43,28 @@ StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) 
     const auto it = sessions_.find(id);
     return it == sessions_.end() ? nullptr : it->second;
   };
-  if (auto session = resident()) return session;
+  const auto forget = [&] {
+    std::unique_lock lock(mutex_);
+    sessions_.erase(id);
+  };
+  if (auto session = resident()) {
+    if (store_ == nullptr) return session;
+    // A shared store may have let another server take the session over since this
+    // one last touched it: then the copy in memory is stale and is loaded anew.
+    auto ownership = store_->AcquireOwnership(id);
+    if (ownership.ok() && ownership->held_throughout) return session;
+    forget();
+    if (!ownership.ok()) return OwnershipError(id, ownership.status());
+  }
   if (!loader_) return NotFoundError("no session '" + id + "'");
   std::lock_guard load(load_mutex_);
   if (auto session = resident()) return session;  // loaded by another call meanwhile
+  if (store_ != nullptr) {
+    // Owned before it is read, so that no other server appends while it loads.
+    if (auto ownership = store_->AcquireOwnership(id); !ownership.ok()) {
+      return OwnershipError(id, ownership.status());
+    }
+  }
   auto loaded = loader_(id);
   if (!loaded.ok()) {
     if (loaded.status().code() == StatusCode::kNotFound)
@@ -57,6 +75,11 @@ StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) 
   std::unique_lock lock(mutex_);
   sessions_.emplace(id, *loaded);
   return loaded;
+}
+
+Status SessionRegistry::OwnershipError(const std::string& id, const Status& status) {
+  if (status.code() == StatusCode::kNotFound) return NotFoundError("no session '" + id + "'");
+  return status;
 }
 
 std::vector<std::shared_ptr<Session>> SessionRegistry::Resident() const {
@@ -102,7 +125,20 @@ std::vector<std::string> SessionRegistry::EvictIdle(std::int64_t cutoff_unix_ms)
       ++it;
     }
   }
+  lock.unlock();
+  // Another server may take an evicted session at once rather than after its hold expires.
+  for (const std::string& id : evicted) store_->ReleaseOwnership(id);
   return evicted;
+}
+
+void SessionRegistry::ReleaseAll() {
+  std::unique_lock lock(mutex_);
+  if (store_ == nullptr) return;  // memory is the only copy: nothing to hand over
+  std::vector<std::string> released;
+  for (const auto& [id, session] : sessions_) released.push_back(id);
+  sessions_.clear();
+  lock.unlock();
+  for (const std::string& id : released) store_->ReleaseOwnership(id);
 }
 
 Status SessionRegistry::Delete(const std::string& id) {

@@ -45,8 +45,22 @@ class SessionRegistry {
   // The policy given to every session created or adopted from now on.
   void set_policy(const SessionPolicy& policy) { policy_ = policy; }
   // The session, loaded with the loader if it is not in memory. NOT_FOUND for an
-  // unknown id.
+  // unknown id. With a store, every call (re)acquires the session's ownership there:
+  // UNAVAILABLE while another server owns it, and a session taken over by another
+  // server since this one held it is loaded from the store again.
   StatusOr<std::shared_ptr<Session>> Find(const std::string& id);
+  // Gives up the ownership of a session this server created, keeping it in memory:
+  // behind a load balancer that routes by session id, CreateSession lands on any
+  // server, and the session's calls may then go to another one, which must be able
+  // to take it at once. When the session's next call comes here, it is loaded anew
+  // if another server has had it meanwhile.
+  void HandOver(const std::string& id) {
+    if (store_ != nullptr) store_->ReleaseOwnership(id);
+  }
+  // Drops every session from memory and gives up their ownership in the store, so
+  // that other servers can take them over at once (a server that stops). No-op
+  // without a store: memory is then the only copy.
+  void ReleaseAll();
   // Up to `limit` sessions with ids after `after_id` (all when empty), ordered by id,
   // loading evicted ones; `more` tells whether further sessions follow. Only the page
   // is loaded, so that listing a large store does not pull every session into memory.
@@ -59,6 +73,8 @@ class SessionRegistry {
   Status Delete(const std::string& id);
 
  private:
+  static Status OwnershipError(const std::string& id, const Status& status);
+
   const std::size_t max_sessions_;
   SessionStore* const store_;
   SessionPolicy policy_;

@@ -42,6 +42,11 @@ TEST(IsRetryable, ABrokenConnectionIsRetriedOnlyForIdempotentCalls) {
   EXPECT_FALSE(IsRetryable(unavailable, Idempotence::kNotIdempotent));
 }
 
+TEST(IsRetryable, ASessionOwnedElsewhereWithAPushbackIsRetriedForEveryCall) {
+  const grpc::Status owned(grpc::StatusCode::UNAVAILABLE, "session s is owned by server b");
+  EXPECT_TRUE(IsRetryable(owned, Idempotence::kNotIdempotent, /*pushback=*/true));
+}
+
 TEST(IsRetryable, AnswersAreNeverRetried) {
   for (const auto code :
        {grpc::StatusCode::INVALID_ARGUMENT, grpc::StatusCode::NOT_FOUND,
