@@ -29,6 +29,8 @@ const char kCliUsage[] =
     "  outcome <session> <frame> <supervoxel> moved|still [--request-id R]\n"
     "  outcome <session> <frame> <supervoxel> --after-cloud after.pcd [--request-id R]\n"
     "  stream  <session> <samples.csv> [--batch 500]\n"
+    "  health  [--service NAME]   grpc.health.v1 Check of the server (NAME empty);\n"
+    "          exit 0 only when SERVING (a draining server answers NOT_SERVING)\n"
     "Flags of every command:\n"
     "  --server host:port  (default $RELMAP_SERVER, else 127.0.0.1:50051)\n"
     "  --token T           the session's token (default $RELMAP_TOKEN)\n"

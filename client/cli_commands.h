@@ -19,6 +19,8 @@ int RunSessionCommand(const std::string& verb, const CommandLine& args);
 int RunMaps(const CommandLine& args);
 int RunOutcome(const CommandLine& args);
 int RunStream(const CommandLine& args);
+// 0 when the server reports SERVING, 1 otherwise (NOT_SERVING, or no answer).
+int RunHealth(const CommandLine& args);
 
 // A client configured from the global flags (and their environment variables).
 std::unique_ptr<RelevanceClient> ClientFrom(const CommandLine& args);

@@ -1,10 +1,14 @@
-// Each RPC is one line of request building over Invoke, which owns the deadline,
-// the metadata and the retries.
+// Each RPC is one line of request building over Retrying (through Invoke for the
+// relevance service's own methods), which owns the deadline, the metadata and the
+// retries.
 #include "relevance_client.h"
+
+#include <grpcpp/generic/generic_stub.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <future>
 #include <random>
 #include <thread>
 
@@ -50,22 +54,23 @@ ClientOptions PlaintextOptions(const std::string& address, int max_message_bytes
 }  // namespace
 
 RelevanceClient::RelevanceClient(ClientOptions options)
-    : options_(std::move(options)), stub_(v1::RelevanceService::NewStub(MakeChannel(options_))) {}
+    : options_(std::move(options)),
+      channel_(MakeChannel(options_)),
+      stub_(v1::RelevanceService::NewStub(channel_)) {}
 
 RelevanceClient::RelevanceClient(const std::string& address, int max_message_bytes)
     : RelevanceClient(PlaintextOptions(address, max_message_bytes)) {}
 
-template <typename Request, typename Response>
-grpc::Status RelevanceClient::Invoke(Rpc<Request, Response> rpc, const Request& request,
-                                     Response* response, Idempotence idempotence,
-                                     const Metadata& metadata) {
+grpc::Status RelevanceClient::Retrying(
+    const std::function<grpc::Status(grpc::ClientContext&)>& attempt, Idempotence idempotence,
+    const Metadata& metadata) {
   const auto deadline = std::chrono::system_clock::now() + options_.deadline;
   int attempts = 0;  // pushbacks excepted: those are repeated until the deadline
   for (int call = 1;; ++call) {
     grpc::ClientContext context;
     context.set_deadline(deadline);
     for (const auto& [key, value] : metadata) context.AddMetadata(key, value);
-    const grpc::Status status = ((*stub_).*rpc)(&context, request, response);
+    const grpc::Status status = attempt(context);
     const std::optional<std::chrono::milliseconds> pushback = PushbackOf(context);
     if (status.ok() || !IsRetryable(status, idempotence, pushback.has_value())) return status;
     if (!pushback && ++attempts >= options_.retry.max_attempts) return status;
@@ -77,6 +82,15 @@ grpc::Status RelevanceClient::Invoke(Rpc<Request, Response> rpc, const Request& 
     std::this_thread::sleep_for(wait);
     ++retries_;
   }
+}
+
+template <typename Request, typename Response>
+grpc::Status RelevanceClient::Invoke(Rpc<Request, Response> rpc, const Request& request,
+                                     Response* response, Idempotence idempotence,
+                                     const Metadata& metadata) {
+  return Retrying(
+      [&](grpc::ClientContext& context) { return ((*stub_).*rpc)(&context, request, response); },
+      idempotence, metadata);
 }
 
 template <typename Request, typename Response>
@@ -221,6 +235,25 @@ grpc::Status RelevanceClient::ImportSession(const v1::SessionState& state, Sessi
   v1::ImportSessionRequest request;
   *request.mutable_state() = state;
   return StartSession(&v1::RelevanceService::Stub::ImportSession, request, session, response);
+}
+
+grpc::Status RelevanceClient::CheckHealth(const std::string& service,
+                                          grpc::health::v1::HealthCheckResponse* response) {
+  using grpc::health::v1::HealthCheckRequest;
+  using grpc::health::v1::HealthCheckResponse;
+  // The health service's messages are linked in, its stub is not: a generic stub over
+  // the same channel, waited on here.
+  grpc::TemplatedGenericStub<HealthCheckRequest, HealthCheckResponse> health(channel_);
+  HealthCheckRequest request;
+  request.set_service(service);
+  return Retrying(
+      [&](grpc::ClientContext& context) {
+        std::promise<grpc::Status> done;
+        health.UnaryCall(&context, "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
+                         response, [&done](grpc::Status status) { done.set_value(status); });
+        return done.get_future().get();
+      },
+      Idempotence::kIdempotent, {});
 }
 
 v1::Cloud PcdCloud(std::string pcd_bytes) {

@@ -9,12 +9,14 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "client_options.h"
+#include "grpc/health/v1/health.pb.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
 #include "retry.h"
 
@@ -68,6 +70,13 @@ class RelevanceClient {
   grpc::Status ImportSession(const v1::SessionState& state, SessionHandle* session,
                              v1::ImportSessionResponse* response = nullptr);
 
+  // grpc.health.v1.Health/Check of `service`: "" is the whole server (the only name
+  // relmap-server answers for; others are NOT_FOUND). What load balancers and probes
+  // ask; a server that drains before it stops answers NOT_SERVING. Retried like any
+  // idempotent call, within the deadline.
+  grpc::Status CheckHealth(const std::string& service,
+                           grpc::health::v1::HealthCheckResponse* response);
+
   // The admin key sent with CreateSession, ListSessions, DeleteSession and
   // ImportSession, for servers started with one.
   void set_admin_key(std::string key) { admin_key_ = std::move(key); }
@@ -83,8 +92,12 @@ class RelevanceClient {
   using Rpc = grpc::Status (v1::RelevanceService::Stub::*)(grpc::ClientContext*, const Request&,
                                                            Response*);
 
-  // One logical call: attempts with `metadata` until success, a final status, the
-  // attempt limit or the deadline.
+  // One logical call: attempts of `attempt` (one RPC on the context it is given,
+  // which carries the deadline and `metadata`) until success, a final status, the
+  // attempt limit or the deadline. Every call of this client goes through here.
+  grpc::Status Retrying(const std::function<grpc::Status(grpc::ClientContext&)>& attempt,
+                        Idempotence idempotence, const Metadata& metadata);
+  // Retrying over one method of the stub.
   template <typename Request, typename Response>
   grpc::Status Invoke(Rpc<Request, Response> rpc, const Request& request, Response* response,
                       Idempotence idempotence, const Metadata& metadata);
@@ -105,6 +118,7 @@ class RelevanceClient {
                                                const std::string& request_id);
 
   ClientOptions options_;
+  std::shared_ptr<grpc::Channel> channel_;
   std::unique_ptr<v1::RelevanceService::Stub> stub_;
   std::string admin_key_;
   std::atomic<std::uint64_t> retries_{0};

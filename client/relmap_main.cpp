@@ -20,5 +20,6 @@ int main(int argc, char** argv) {
   if (command == "maps") return RunMaps(args);
   if (command == "outcome") return RunOutcome(args);
   if (command == "stream") return RunStream(args);
+  if (command == "health") return RunHealth(args);
   UsageError("unknown command '" + command + "'");
 }
