@@ -77,6 +77,20 @@ StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) 
   return loaded;
 }
 
+StatusOr<std::shared_ptr<Session>> SessionRegistry::Peek(const std::string& id) {
+  {
+    std::shared_lock lock(mutex_);
+    if (const auto it = sessions_.find(id); it != sessions_.end()) return it->second;
+  }
+  if (!loader_) return NotFoundError("no session '" + id + "'");
+  // Read, not owned, and not kept: listing must neither take sessions that other
+  // servers serve nor pull a large store into memory.
+  auto loaded = loader_(id);
+  if (!loaded.ok()) return loaded.status();
+  (*loaded)->set_policy(policy_);
+  return loaded;
+}
+
 Status SessionRegistry::OwnershipError(const std::string& id, const Status& status) {
   if (status.code() == StatusCode::kNotFound) return NotFoundError("no session '" + id + "'");
   return status;
@@ -107,7 +121,7 @@ SessionRegistry::Page SessionRegistry::List(const std::string& after_id, std::si
       break;
     }
     // A session deleted since the ids were read is skipped.
-    if (auto session = Find(*it); session.ok()) page.sessions.push_back(*session);
+    if (auto session = Peek(*it); session.ok()) page.sessions.push_back(*session);
   }
   return page;
 }

@@ -62,8 +62,9 @@ class SessionRegistry {
   // without a store: memory is then the only copy.
   void ReleaseAll();
   // Up to `limit` sessions with ids after `after_id` (all when empty), ordered by id,
-  // loading evicted ones; `more` tells whether further sessions follow. Only the page
-  // is loaded, so that listing a large store does not pull every session into memory.
+  // reading evicted ones; `more` tells whether further sessions follow. Only the page
+  // is read, and what is read is not kept, so that listing a large store does not pull
+  // every session into memory nor take sessions other servers serve.
   struct Page {
     std::vector<std::shared_ptr<Session>> sessions;
     bool more = false;
@@ -73,6 +74,9 @@ class SessionRegistry {
   Status Delete(const std::string& id);
 
  private:
+  // The session as it is in memory, or a copy read from the store for a moment
+  // (not owned, not kept); NOT_FOUND for an unknown id.
+  StatusOr<std::shared_ptr<Session>> Peek(const std::string& id);
   static Status OwnershipError(const std::string& id, const Status& status);
 
   const std::size_t max_sessions_;

@@ -138,5 +138,17 @@ TEST_F(RegistryOwnership, ReleaseAllGivesUpEverySessionInMemory) {
   EXPECT_TRUE(registry_.Resident().empty());
 }
 
+TEST_F(RegistryOwnership, ListingReadsStoredSessionsWithoutTakingOrKeepingThem) {
+  std::vector<SessionSummary> stored(2);
+  stored[0].id = "a";
+  stored[1].id = "b";
+  EXPECT_CALL(store_, ListSessions()).WillOnce(Return(stored));
+  EXPECT_CALL(store_, AcquireOwnership(_)).Times(0);
+  const SessionRegistry::Page page = registry_.List("", 10);
+  EXPECT_EQ(page.sessions.size(), 2u);
+  EXPECT_EQ(loads_, 2);
+  EXPECT_TRUE(registry_.Resident().empty());
+}
+
 }  // namespace
 }  // namespace relmap::session
