@@ -22,6 +22,7 @@ endif()
 if(RELMAP_WITH_SIM)
   find_package(PkgConfig REQUIRED)
   pkg_check_modules(ODE REQUIRED IMPORTED_TARGET ode)
+  pkg_check_modules(YAML REQUIRED IMPORTED_TARGET yaml-0.1)  # relmap-robot's YAML configs
 endif()
 
 if(RELMAP_BUILD_TESTS)

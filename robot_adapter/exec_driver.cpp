@@ -2,7 +2,6 @@
 #include "exec_driver.h"
 
 #include <fcntl.h>
-#include <google/protobuf/util/json_util.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -13,27 +12,10 @@
 #include <cstring>
 #include <thread>
 
+#include "posix_io.h"
+
 namespace relmap::robot {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-int MillisecondsLeft(Clock::time_point deadline) {
-  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-  return left.count() > 0 ? static_cast<int>(left.count()) : 0;
-}
-
-// Writes all of `data` to `fd`; false on any error.
-bool WriteAll(int fd, const std::string& data) {
-  std::size_t written = 0;
-  while (written < data.size()) {
-    const ssize_t n = ::write(fd, data.data() + written, data.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    written += static_cast<std::size_t>(n);
-  }
-  return true;
-}
 
 // The child's side: its own process group, the pipes as stdin and stdout, exec.
 [[noreturn]] void ExecChild(const std::vector<std::string>& command, int stdin_fd, int stdout_fd) {
@@ -134,43 +116,6 @@ StatusOr<PushOutcome> ExecDriver::Push(const DriverRequest& target) {
                                             std::to_string(WEXITSTATUS(wait_status)));
   }
   return ParseDriverResult(output);
-}
-
-StatusOr<PushOutcome> ParseDriverResult(const std::string& json) {
-  DriverResult result;
-  google::protobuf::util::JsonParseOptions options;
-  options.ignore_unknown_fields = false;
-  const auto parsed = google::protobuf::util::JsonStringToMessage(json, &result, options);
-  const std::string quoted = json.size() > 200 ? json.substr(0, 200) + "..." : json;
-  if (!parsed.ok()) {
-    return InvalidArgumentError("driver answer is not a DriverResult JSON object (" +
-                                std::string(parsed.message()) + "): " + quoted);
-  }
-  PushOutcome outcome;
-  outcome.message = result.message();
-  if (result.result() == "done") {
-    outcome.result = PushResult::kDone;
-  } else if (result.result() == "failed") {
-    outcome.result = PushResult::kFailed;
-  } else if (result.result() == "unreachable") {
-    outcome.result = PushResult::kUnreachable;
-  } else {
-    return InvalidArgumentError("driver answer: \"result\" must be \"done\", \"failed\" or " +
-                                std::string("\"unreachable\", not \"") + result.result() + "\"");
-  }
-  if (result.label() == "moved") {
-    outcome.label = v1::LABEL_MOVEABLE;
-  } else if (result.label() == "still") {
-    outcome.label = v1::LABEL_NOT_MOVEABLE;
-  } else if (!result.label().empty()) {
-    return InvalidArgumentError("driver answer: \"label\" must be \"moved\" or \"still\", not \"" +
-                                result.label() + "\"");
-  }
-  if (outcome.label && outcome.result != PushResult::kDone) {
-    return InvalidArgumentError("driver answer: a label with result \"" + result.result() +
-                                "\" (only a done push has one)");
-  }
-  return outcome;
 }
 
 }  // namespace relmap::robot

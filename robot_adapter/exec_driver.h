@@ -27,7 +27,4 @@ class ExecDriver final : public PusherDriver {
   std::chrono::milliseconds timeout_;
 };
 
-// `json` as a driver's answer; INVALID_ARGUMENT saying what is wrong.
-StatusOr<PushOutcome> ParseDriverResult(const std::string& json);
-
 }  // namespace relmap::robot

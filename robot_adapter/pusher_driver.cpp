@@ -1,4 +1,5 @@
-// The target a driver gets.
+// The target a driver gets and the answer it gives, as JSON: the exec and tcp-json
+// drivers' common language.
 #include "pusher_driver.h"
 
 #include <google/protobuf/util/json_util.h>
@@ -46,6 +47,43 @@ const char* PushResultName(PushResult result) {
       return "unreachable";
   }
   return "failed";
+}
+
+StatusOr<PushOutcome> ParseDriverResult(const std::string& json) {
+  DriverResult result;
+  google::protobuf::util::JsonParseOptions options;
+  options.ignore_unknown_fields = false;
+  const auto parsed = google::protobuf::util::JsonStringToMessage(json, &result, options);
+  const std::string quoted = json.size() > 200 ? json.substr(0, 200) + "..." : json;
+  if (!parsed.ok()) {
+    return InvalidArgumentError("driver answer is not a DriverResult JSON object (" +
+                                std::string(parsed.message()) + "): " + quoted);
+  }
+  PushOutcome outcome;
+  outcome.message = result.message();
+  if (result.result() == "done") {
+    outcome.result = PushResult::kDone;
+  } else if (result.result() == "failed") {
+    outcome.result = PushResult::kFailed;
+  } else if (result.result() == "unreachable") {
+    outcome.result = PushResult::kUnreachable;
+  } else {
+    return InvalidArgumentError("driver answer: \"result\" must be \"done\", \"failed\" or " +
+                                std::string("\"unreachable\", not \"") + result.result() + "\"");
+  }
+  if (result.label() == "moved") {
+    outcome.label = v1::LABEL_MOVEABLE;
+  } else if (result.label() == "still") {
+    outcome.label = v1::LABEL_NOT_MOVEABLE;
+  } else if (!result.label().empty()) {
+    return InvalidArgumentError("driver answer: \"label\" must be \"moved\" or \"still\", not \"" +
+                                result.label() + "\"");
+  }
+  if (outcome.label && outcome.result != PushResult::kDone) {
+    return InvalidArgumentError("driver answer: a label with result \"" + result.result() +
+                                "\" (only a done push has one)");
+  }
+  return outcome;
 }
 
 }  // namespace relmap::robot

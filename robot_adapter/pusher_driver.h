@@ -1,5 +1,6 @@
-// How relmap-robot pushes: one interface in front of an arm (a user command, the
-// simulator). A driver gets the target and reports whether the push happened.
+// How relmap-robot pushes: one interface in front of an arm (a user command, a robot
+// controller over TCP, the simulator). A driver gets the target and reports whether the push
+// happened.
 #pragma once
 
 #include <optional>
@@ -37,6 +38,10 @@ DriverRequest MakeDriverRequest(const std::string& session_id, const v1::Compute
 // `target` as one line of JSON, every field present, with the proto's field names: what
 // an exec driver reads and a dry run prints.
 std::string DriverRequestJson(const DriverRequest& target);
+
+// `json` as a driver's answer (a DriverResult JSON object, e.g.
+// {"result": "done", "label": "moved"}); INVALID_ARGUMENT saying what is wrong.
+StatusOr<PushOutcome> ParseDriverResult(const std::string& json);
 
 // "done", "failed", "unreachable".
 const char* PushResultName(PushResult result);

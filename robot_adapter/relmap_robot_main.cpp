@@ -1,8 +1,11 @@
 // relmap-robot: connects a robot's camera and arm to a relmap server.
-//   relmap-robot run --config robot.json [--server ADDR] [--dry-run] [--max-pushes N]
+//   relmap-robot run --config robot.json|robot.yaml [--server ADDR] [--dry-run] [--max-pushes N]
 //   relmap-robot replay RUN_DIR [--server ADDR]
 // Without a server address (flag or config), a relmap-server is started on loopback
 // for the command's duration.
+#include <unistd.h>
+
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -16,10 +19,13 @@
 #include "exploration_loop.h"
 #include "local_server.h"
 #include "ode_scene.h"
+#include "openni2_source.h"
 #include "replay.h"
 #include "robot_config.h"
 #include "server_binary.h"
 #include "sim_robot.h"
+#include "stream_source.h"
+#include "tcp_json_driver.h"
 
 namespace relmap::robot {
 namespace {
@@ -69,6 +75,68 @@ std::unique_ptr<client::RelevanceClient> Connect(const std::string& address) {
   return client;
 }
 
+std::chrono::milliseconds Milliseconds(double seconds) {
+  return std::chrono::milliseconds(static_cast<std::int64_t>(seconds * 1000));
+}
+
+// The configured cloud source; the simulator's scene, when it is one, into `scene`.
+StatusOr<std::unique_ptr<CloudSource>> MakeSource(const SourceConfig& config,
+                                                  std::unique_ptr<sim::OdeScene>* scene) {
+  switch (config.kind_case()) {
+    case SourceConfig::kSim: {
+      const SimConfig& sim = config.sim();
+      StatusOr<std::unique_ptr<sim::OdeScene>> loaded =
+          sim::OdeScene::Load(sim.scene(), sim.seed());
+      if (!loaded.ok()) return loaded.status();
+      *scene = std::move(loaded).value();
+      if (sim.width() > 0 && sim.height() > 0) (*scene)->SetImageSize(sim.width(), sim.height());
+      return std::unique_ptr<CloudSource>(std::make_unique<SimSource>(**scene));
+    }
+    case SourceConfig::kStdin:
+      return std::unique_ptr<CloudSource>(std::make_unique<StreamSource>(STDIN_FILENO, &g_stop));
+    case SourceConfig::kTcp: {
+      TcpSource::Options options;
+      options.wait_timeout = Milliseconds(config.tcp().wait_timeout_seconds());
+      StatusOr<std::unique_ptr<TcpSource>> listening =
+          TcpSource::Listen(config.tcp().listen(), options, &g_stop);
+      if (!listening.ok()) return listening.status();
+      std::fprintf(stderr, "relmap-robot: waiting for PCD frames on %s (port %d)\n",
+                   config.tcp().listen().c_str(), (*listening)->port());
+      return std::unique_ptr<CloudSource>(std::move(listening).value());
+    }
+    case SourceConfig::kOpenni2: {
+      OpenNI2Options options;
+      options.device = config.openni2().device();
+      options.frame_timeout = Milliseconds(config.openni2().frame_timeout_seconds());
+      return OpenOpenNI2Source(options, &g_stop);
+    }
+    case SourceConfig::kDirectory:
+    case SourceConfig::KIND_NOT_SET:
+      break;
+  }
+  const DirectorySourceConfig& directory = config.directory();
+  DirectorySource::Options options;
+  options.wait_for_files = directory.wait_for_files();
+  if (directory.has_poll_seconds()) options.poll = Milliseconds(directory.poll_seconds());
+  options.wait_timeout = Milliseconds(directory.wait_timeout_seconds());
+  return std::unique_ptr<CloudSource>(
+      std::make_unique<DirectorySource>(directory.path(), options, &g_stop));
+}
+
+// The configured driver; the sim driver pushes in `scene`.
+std::unique_ptr<PusherDriver> MakeDriver(const RobotConfig& config, sim::OdeScene* scene) {
+  const DriverConfig& driver = config.driver();
+  if (driver.has_sim()) return std::make_unique<SimDriver>(*scene, config.source().sim().seed());
+  if (driver.has_tcp_json()) {
+    return std::make_unique<TcpJsonDriver>(
+        driver.tcp_json().address(), Milliseconds(driver.tcp_json().connect_timeout_seconds()),
+        Milliseconds(driver.tcp_json().timeout_seconds()));
+  }
+  return std::make_unique<ExecDriver>(
+      std::vector<std::string>(driver.exec().command().begin(), driver.exec().command().end()),
+      Milliseconds(driver.exec().timeout_seconds()));
+}
+
 int Run(const std::vector<std::string>& args) {
   std::string config_path;
   std::string server;
@@ -97,42 +165,16 @@ int Run(const std::vector<std::string>& args) {
   if (server.empty()) server = config->server();
 
   std::unique_ptr<sim::OdeScene> scene;
-  std::unique_ptr<CloudSource> source;
-  if (config->source().has_sim()) {
-    const SimConfig& sim = config->source().sim();
-    StatusOr<std::unique_ptr<sim::OdeScene>> loaded = sim::OdeScene::Load(sim.scene(), sim.seed());
-    if (!loaded.ok()) return Fail(loaded.status());
-    scene = std::move(loaded).value();
-    if (sim.width() > 0 && sim.height() > 0) scene->SetImageSize(sim.width(), sim.height());
-    source = std::make_unique<SimSource>(*scene);
-  } else {
-    const DirectorySourceConfig& directory = config->source().directory();
-    DirectorySource::Options options;
-    options.wait_for_files = directory.wait_for_files();
-    if (directory.has_poll_seconds()) {
-      options.poll =
-          std::chrono::milliseconds(static_cast<std::int64_t>(directory.poll_seconds() * 1000));
-    }
-    options.wait_timeout = std::chrono::milliseconds(
-        static_cast<std::int64_t>(directory.wait_timeout_seconds() * 1000));
-    source = std::make_unique<DirectorySource>(directory.path(), options, &g_stop);
-  }
-  std::unique_ptr<PusherDriver> driver;
-  if (config->driver().has_sim()) {
-    driver = std::make_unique<SimDriver>(*scene, config->source().sim().seed());
-  } else {
-    const ExecDriverConfig& exec = config->driver().exec();
-    driver = std::make_unique<ExecDriver>(
-        std::vector<std::string>(exec.command().begin(), exec.command().end()),
-        std::chrono::milliseconds(static_cast<std::int64_t>(exec.timeout_seconds() * 1000)));
-  }
+  StatusOr<std::unique_ptr<CloudSource>> source = MakeSource(config->source(), &scene);
+  if (!source.ok()) return Fail(source.status());
+  std::unique_ptr<PusherDriver> driver = MakeDriver(*config, scene.get());
 
   std::unique_ptr<client::LocalServer> local;
   StatusOr<std::string> address = ServerAddress(server, &local);
   if (!address.ok()) return Fail(address.status());
   const std::unique_ptr<client::RelevanceClient> client = Connect(*address);
   InstallStopHandlers();
-  ExplorationLoop loop(*config, *client, *source, *driver, &g_stop);
+  ExplorationLoop loop(*config, *client, **source, *driver, &g_stop);
   if (Status status = loop.Start(); !status.ok()) return Fail(status);
   std::fprintf(stderr, "relmap-robot: session %s, run %s%s\n", loop.session().id.c_str(),
                loop.run_id().c_str(), config->dry_run() ? " (dry run)" : "");

@@ -1,5 +1,5 @@
-// relmap-robot's config file: JSON of RobotConfig (robot_messages.proto), checked in
-// one place, defaults applied.
+// relmap-robot's config file: JSON of RobotConfig (robot_messages.proto), or the same
+// in YAML, checked in one place, defaults applied.
 #pragma once
 
 #include <string>
@@ -14,10 +14,15 @@ namespace relmap::robot {
 inline constexpr unsigned kDefaultMaxPushes = 10;
 inline constexpr unsigned kDefaultRetries = 2;  // the paper's
 inline constexpr double kDefaultDriverTimeoutSeconds = 60;
+inline constexpr double kDefaultConnectTimeoutSeconds = 5;
+inline constexpr double kDefaultFrameTimeoutSeconds = 10;
 
 // Parses and validates `json`; INVALID_ARGUMENT naming `label` and the field.
 StatusOr<RobotConfig> ParseRobotConfig(std::string_view json, const std::string& label);
-// The same from a file; NOT_FOUND when it cannot be read.
+// The same from YAML, turned into that JSON first (yaml_json.h).
+StatusOr<RobotConfig> ParseRobotConfigYaml(std::string_view yaml, const std::string& label);
+// The same from a file: YAML when it ends in .yaml or .yml, else JSON; NOT_FOUND when
+// it cannot be read.
 StatusOr<RobotConfig> ReadRobotConfig(const std::string& path);
 
 // Whether `point` (camera frame) lies inside `box`, bounds included.

@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libboost-math-dev
   libpcl-dev
   libgrpc++-dev protobuf-compiler-grpc protobuf-compiler libprotobuf-dev
-  libode-dev
+  libode-dev libyaml-dev  # the simulator; relmap-robot's YAML configs
   libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libssl-dev zlib1g-dev openssl

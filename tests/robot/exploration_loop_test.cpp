@@ -1,6 +1,6 @@
 // relmap-robot's loop through a real relmap-server, with the analytic test scene as
-// the robot: learning, the workspace box, failing drivers, dry runs, restarts, and
-// record → replay.
+// the robot: learning, the workspace box, failing drivers (exec and tcp-json), dry
+// runs, restarts, and record → replay.
 #include "exploration_loop.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "exec_driver.h"
+#include "fake_controller.h"
 #include "integration/suite_server.h"
 #include "integration/test_support.h"
 #include "ode_scene.h"
@@ -18,6 +19,7 @@
 #include "run_record.h"
 #include "sim/analytic_scene.h"
 #include "sim_robot.h"
+#include "tcp_json_driver.h"
 
 namespace relmap::robot {
 namespace {
@@ -103,6 +105,25 @@ class ExplorationLoopTest : public ::testing::Test {
     return status;
   }
 
+  // Iteration 1 failed in all three attempts (the last one's error recorded) and posted
+  // nothing; iteration 2 posted `label`, the session's only sample.
+  void ExpectFirstIterationFailedAndSecondPosted(const RunSummary& summary,
+                                                 const client::SessionHandle& session,
+                                                 v1::Label label) const {
+    EXPECT_EQ(StatusOf(1).state(), "failed");
+    EXPECT_EQ(StatusOf(1).attempts(), 3u);
+    EXPECT_FALSE(fs::exists(IterationFile(1, "label.json")));
+    DriverResult last_attempt;
+    ASSERT_TRUE(ReadJson(IterationFile(1, "driver.json"), &last_attempt).ok());
+    EXPECT_EQ(last_attempt.result(), "error");
+    EXPECT_EQ(StatusOf(2).state(), "posted");
+    EXPECT_EQ(summary.failed, 1);
+    EXPECT_EQ(summary.posted, 1);
+    const v1::SessionState state = Export(session);
+    ASSERT_EQ(state.samples_size(), 1);
+    EXPECT_EQ(state.samples(0).label(), label);
+  }
+
   static inline relmap::testing::SuiteServer suite_;
   relmap::testing::TemporaryDirectory run_dir_;
   sim::testing::AnalyticScene scene_{3};
@@ -178,6 +199,47 @@ TEST_F(ExplorationLoopTest, AFailingPushIsRetriedWithFreshFramesAndNothingIsPost
   v1::GetSessionResponse got;
   ASSERT_TRUE(suite_.client().GetSession(session, &got).ok());
   EXPECT_EQ(got.stats().frames(), 3u);
+}
+
+TEST_F(ExplorationLoopTest,
+       AControllerThatAnswersGarbageFallsSilentOrHangsUpPostsNothingAndTheLoopGoesOn) {
+  // Iteration 1's three attempts (two retries): garbage, silence past the reply
+  // timeout, a hang-up. From then on the controller pushes and reports "moved".
+  FakeController controller([](int request, const std::string&) -> std::string {
+    if (request == 1) return "pushed it, boss";
+    if (request == 2) return "";
+    if (request == 3) return FakeController::kHangUp;
+    return R"({"result": "done", "label": "moved"})";
+  });
+  TcpJsonDriver driver(controller.address(), std::chrono::milliseconds(2000),
+                       std::chrono::milliseconds(300));
+  client::SessionHandle session;
+  StatusOr<RunSummary> summary = Run(Config(4), driver, &session);
+  ASSERT_TRUE(summary.ok()) << summary.status().message();
+  ExpectFirstIterationFailedAndSecondPosted(*summary, session, v1::LABEL_MOVEABLE);
+}
+
+TEST_F(ExplorationLoopTest,
+       AnExecDriverThatAnswersGarbageHangsOrCrashesPostsNothingAndTheLoopGoesOn) {
+  // The script counts its runs in a file: garbage, a hang past the timeout, a crash,
+  // then pushes with its own label "still".
+  const std::string count = run_dir_.path() + "/runs";
+  const std::string script = run_dir_.path() + "/driver.sh";
+  std::ofstream(script) << "#!/bin/sh\ncat > /dev/null\ncount=" << count << "\n"
+                        << R"sh(n=$(($(cat "$count" 2>/dev/null || echo 0) + 1)); echo $n > "$count"
+case $n in
+  1) echo 'pushed it, boss' ;;
+  2) sleep 30 ;;
+  3) kill -SEGV $$ ;;
+  *) echo '{"result": "done", "label": "still"}' ;;
+esac
+)sh";
+  ::chmod(script.c_str(), 0755);
+  ExecDriver driver({script}, std::chrono::milliseconds(300));
+  client::SessionHandle session;
+  StatusOr<RunSummary> summary = Run(Config(4), driver, &session);
+  ASSERT_TRUE(summary.ok()) << summary.status().message();
+  ExpectFirstIterationFailedAndSecondPosted(*summary, session, v1::LABEL_NOT_MOVEABLE);
 }
 
 TEST_F(ExplorationLoopTest, TheDriversOwnLabelIsPostedWithoutAnAfterCloud) {

@@ -48,6 +48,36 @@ TEST(RelmapRobot, RunsWithTheSimulatorAndReplaysTheRecordedRun) {
   EXPECT_LE(rows, 3);
 }
 
+TEST(RelmapRobot, TakesKinectFramesOnStdinWithAYamlConfigAndTheExampleExecDriver) {
+  const std::string real = RELMAP_REAL_DATA_DIR;
+  const std::string frames[2] = {real + "/kinect_static_seq_1.pcd",
+                                 real + "/kinect_static_seq_2.pcd"};
+  if (!std::ifstream(frames[0]) || !std::ifstream(frames[1])) GTEST_SKIP() << "no " << real;
+  StatusOr<std::unique_ptr<client::LocalServer>> server =
+      client::LocalServer::Start(RELMAP_SERVER_BINARY, {true, {}, ""});
+  ASSERT_TRUE(server.ok()) << server.status().message();
+  relmap::testing::TemporaryDirectory directory;
+  const std::string config = directory.path() + "/robot.yaml";
+  std::ofstream(config) << "source: {stdin: {}}\n"
+                        << "driver: {exec: {command: [" << RELMAP_ROBOT_EXAMPLES
+                        << "/push_driver.sh]}}\n"
+                        << "workspace: {min_x: -2, max_x: 2, min_y: -2, max_y: 2, min_z: 0, "
+                           "max_z: 5}\n"
+                        << "max_pushes: 1\nrun_dir: " << directory.path() << "/run\n";
+  const std::string log = directory.path() + "/run.log";
+  ASSERT_EQ(std::system(("cat " + frames[0] + " " + frames[1] +
+                         " | " RELMAP_ROBOT_BINARY " run --config " + config + " --server " +
+                         (*server)->address() + " 2> " + log)
+                            .c_str()),
+            0)
+      << relmap::testing::ReadFile(log);
+  const std::string printed = relmap::testing::ReadFile(log);
+  EXPECT_NE(printed.find("push_driver.sh: target {"), std::string::npos) << printed;
+  // The static scene: the change detector sees no motion between the two frames.
+  EXPECT_NE(printed.find("iteration 1: posted (still)"), std::string::npos) << printed;
+  EXPECT_NE(relmap::testing::ReadFile(directory.path() + "/run/000001/after.pcd").size(), 0u);
+}
+
 TEST(RelmapRobot, ABadConfigIsRefusedWithItsReason) {
   relmap::testing::TemporaryDirectory directory;
   const std::string config = directory.path() + "/robot.json";
