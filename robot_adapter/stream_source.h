@@ -1,7 +1,7 @@
 // Cloud sources over a byte stream of PCD files (see pcd_stream.h): standard input
 // (`camera | relmap-robot run …`), or TCP connections from the camera's side, which
-// relmap-robot listens for — a camera script needs no more than
-// `nc HOST PORT < frame.pcd` per frame, or one connection for all of them.
+// relmap-robot listens for — a camera script needs no more than bash's
+// `cat frame.pcd > /dev/tcp/HOST/PORT` per frame, or one connection for all of them.
 #pragma once
 
 #include <atomic>
