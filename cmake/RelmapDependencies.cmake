@@ -17,6 +17,9 @@ if(RELMAP_WITH_SERVER)
   find_package(Protobuf REQUIRED)
   find_package(gRPC CONFIG REQUIRED)
   find_package(SQLite3 REQUIRED)
+  # libpq (libpq-dev) for the shared session store; CMake's FindPostgreSQL needs
+  # only the client headers.
+  find_package(PostgreSQL REQUIRED)
 endif()
 
 if(RELMAP_WITH_SIM)

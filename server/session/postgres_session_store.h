@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -18,6 +19,7 @@
 
 namespace relmap::session {
 
+class PgConnection;
 class PostgresConnectionPool;
 
 struct PostgresStoreOptions {
@@ -88,6 +90,16 @@ class PostgresSessionStore final : public SessionStore {
  private:
   PostgresSessionStore(std::unique_ptr<PostgresConnectionPool> pool,
                        const PostgresStoreOptions& options);
+
+  // Runs `body` in one transaction on a pooled connection, committed if `body`
+  // returns OK and rolled back otherwise.
+  Status InTransaction(const std::function<Status(PgConnection&)>& body);
+  // Runs `body` in one transaction that first fences the write on `session_id`
+  // (checks that this instance still owns it under its epoch, renews the lease
+  // and locks the owner row), and commits if `body` returns OK. `body` gets the
+  // session's feature dimension.
+  Status FencedWrite(std::string_view session_id,
+                     const std::function<Status(PgConnection&, int dimension)>& body);
 
   // The epoch under which this instance owns `session_id`, if it does.
   std::optional<std::int64_t> HeldEpoch(std::string_view session_id);

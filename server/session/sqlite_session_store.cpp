@@ -5,15 +5,14 @@
 
 #include <sqlite3.h>
 
-#include <cmath>
 #include <iterator>
 #include <string>
 #include <utility>
 
-#include "session/little_endian.h"
 #include "session/snapshot_codec.h"
 #include "session/sqlite_schema.h"
 #include "session/sqlite_statement.h"
+#include "session/store_contract.h"
 
 namespace relmap::session {
 
@@ -36,34 +35,6 @@ struct SqliteSessionStore::Connection {
 };
 
 namespace {
-
-// Built by append: GCC 12 warns (-Wrestrict, falsely) on "\"" + std::string.
-std::string Quoted(std::string_view id) { return std::string("\"").append(id).append("\""); }
-
-Status SessionNotFound(std::string_view id) {
-  return NotFoundError("session " + Quoted(id) + " not found");
-}
-
-// Little-endian IEEE doubles, 8 bytes each: exact, and independent of the host.
-std::string EncodeFeatures(std::span<const double> features) {
-  std::string blob;
-  blob.reserve(features.size() * 8);
-  LittleEndianWriter(blob).F64s(features);
-  return blob;
-}
-
-StatusOr<std::vector<double>> DecodeFeatures(std::string_view blob, int dimension,
-                                             std::string_view session_id, std::int64_t sequence) {
-  if (blob.size() != static_cast<std::size_t>(dimension) * 8) {
-    return DataLossError("sample " + std::to_string(sequence) + " of session " +
-                         Quoted(session_id) + " has a " + std::to_string(blob.size()) +
-                         "-byte feature blob; dimension " + std::to_string(dimension) + " needs " +
-                         std::to_string(dimension * 8));
-  }
-  std::vector<double> features(static_cast<std::size_t>(dimension));
-  LittleEndianReader(blob).F64s(features);
-  return features;
-}
 
 // The feature dimension of session `id`, which doubles as its existence check.
 StatusOr<int> FeatureDimension(Statement& select_dimension, std::string_view id) {
@@ -91,21 +62,6 @@ StatusOr<std::int64_t> SampleCount(Statement& count_samples, std::string_view id
   auto row = count_samples.Step();
   if (!row.ok()) return row.status();
   return count_samples.Int64(0);
-}
-
-Status CheckSample(std::string_view request_id, std::span<const double> features, int label) {
-  if (request_id.empty()) return InvalidArgumentError("empty request id");
-  if (label != 0 && label != 1) {
-    return InvalidArgumentError("label " + std::to_string(label) + " is neither 0 nor 1");
-  }
-  for (std::size_t k = 0; k < features.size(); ++k) {
-    // The model refuses non-finite features; storing one would make every
-    // replay of the session fail.
-    if (!std::isfinite(features[k])) {
-      return InvalidArgumentError("feature " + std::to_string(k) + " is not finite");
-    }
-  }
-  return OkStatus();
 }
 
 StatusOr<Statement> PrepareKeepingFirstError(sqlite3* db, std::string_view sql,
@@ -216,14 +172,7 @@ SqliteSessionStore::SqliteSessionStore(std::unique_ptr<Connection> connection)
 SqliteSessionStore::~SqliteSessionStore() = default;
 
 Status SqliteSessionStore::CreateSession(const SessionRecord& r) {
-  if (r.id.empty()) return InvalidArgumentError("empty session id");
-  if (r.feature_dimension < 1) {
-    return InvalidArgumentError("feature dimension " + std::to_string(r.feature_dimension) +
-                                " is not positive");
-  }
-  if (Status status = cmm::Validate(r.cmm_config); !status.ok()) {
-    return InvalidArgumentError("session " + Quoted(r.id) + ": " + status.message());
-  }
+  if (Status status = CheckRecord(r); !status.ok()) return status;
   const cmm::Paper2018Switches& s = r.cmm_config.switches;
   static_assert(std::size(kPaper2018SwitchFields) == 6, "a new switch needs a column and a bind");
   const auto flag = [](bool b) { return static_cast<std::int64_t>(b); };
@@ -328,10 +277,8 @@ StatusOr<std::int64_t> SqliteSessionStore::AppendSample(std::string_view session
   Transaction transaction(c.db.get());
   auto dimension = BeginOnSession(transaction, /*write=*/true, c.select_dimension, session_id);
   if (!dimension.ok()) return dimension.status();
-  if (features.size() != static_cast<std::size_t>(*dimension)) {
-    return InvalidArgumentError("session " + Quoted(session_id) + " takes " +
-                                std::to_string(*dimension) + " features, not " +
-                                std::to_string(features.size()));
+  if (Status status = CheckFeatureCount(session_id, features, *dimension); !status.ok()) {
+    return status;
   }
 
   {
@@ -344,9 +291,7 @@ StatusOr<std::int64_t> SqliteSessionStore::AppendSample(std::string_view session
     if (!row.ok()) return row.status();
     if (*row) {
       if (existing.BlobView(1) != blob || existing.Int64(2) != label) {
-        return FailedPreconditionError("request id " + Quoted(request_id) +
-                                       " reused with different content in session " +
-                                       Quoted(session_id));
+        return RequestIdReused(session_id, request_id);
       }
       return existing.Int64(0);
     }
@@ -396,9 +341,7 @@ StatusOr<std::vector<StoredSample>> SqliteSessionStore::LoadSamples(std::string_
 Status SqliteSessionStore::SaveSnapshot(std::string_view session_id,
                                         const cmm::CmmSnapshot& snapshot,
                                         std::int64_t sample_count) {
-  if (sample_count < 0) {
-    return InvalidArgumentError("negative snapshot sample count " + std::to_string(sample_count));
-  }
+  if (Status status = CheckSnapshotSampleCount(sample_count); !status.ok()) return status;
   auto blob = EncodeSnapshot(snapshot);
   if (!blob.ok()) return blob.status();
 
@@ -407,17 +350,12 @@ Status SqliteSessionStore::SaveSnapshot(std::string_view session_id,
   Transaction transaction(c.db.get());
   auto dimension = BeginOnSession(transaction, /*write=*/true, c.select_dimension, session_id);
   if (!dimension.ok()) return dimension.status();
-  if (snapshot.dimension != *dimension) {
-    return InvalidArgumentError("snapshot of dimension " + std::to_string(snapshot.dimension) +
-                                " for session " + Quoted(session_id) + " of dimension " +
-                                std::to_string(*dimension));
-  }
   auto stored = SampleCount(c.count_samples, session_id);
   if (!stored.ok()) return stored.status();
-  if (sample_count > *stored) {
-    return FailedPreconditionError("snapshot claims " + std::to_string(sample_count) +
-                                   " samples; session " + Quoted(session_id) + " stores " +
-                                   std::to_string(*stored));
+  if (Status status =
+          CheckSnapshotAgainstSession(session_id, snapshot, sample_count, *dimension, *stored);
+      !status.ok()) {
+    return status;
   }
   ResetOnExit reset(c.upsert_snapshot);
   if (Status status = c.upsert_snapshot.Bind(session_id, sample_count, Blob{*blob}); !status.ok()) {
@@ -449,17 +387,14 @@ StatusOr<std::optional<StoredSnapshot>> SqliteSessionStore::LoadLatestSnapshot(
   // Decoding (and its checksum) runs outside the lock, like encoding.
   auto snapshot = DecodeSnapshot(blob);
   if (!snapshot.ok()) {
-    return Status(snapshot.status().code(),
-                  "snapshot of session " + Quoted(session_id) + ": " + snapshot.status().message());
+    return SnapshotDecodeError(session_id, snapshot.status());
   }
   return std::optional<StoredSnapshot>(StoredSnapshot{std::move(snapshot).value(), sample_count});
 }
 
 Status SqliteSessionStore::IncrementCounters(std::string_view session_id,
                                              const SessionCounters& delta) {
-  if (delta.frames_computed < 0 || delta.interactions < 0) {
-    return InvalidArgumentError("counters only grow; got a negative increment");
-  }
+  if (Status status = CheckCounterDelta(delta); !status.ok()) return status;
   std::lock_guard lock(mutex_);
   Connection& c = *connection_;
   ResetOnExit reset(c.increment_counters);
