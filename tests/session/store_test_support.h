@@ -1,8 +1,9 @@
-// Shared fixtures of the session store tests: a fresh database file per test
-// and a valid session record.
+// Shared fixtures of the session store tests: a valid session record, a fresh
+// SQLite file per test, and SQL run on that file behind the store's back.
 #pragma once
 
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -30,6 +31,18 @@ inline SessionRecord MakeRecord(const std::string& id, int dimension = 3) {
   record.cmm_config.seed = 0xFEDCBA9876543210u;  // above INT64_MAX: stored as its bit pattern
   record.feature_dimension = dimension;
   return record;
+}
+
+// Runs one SQL statement on the SQLite file at `path` behind the store's back, as
+// a damaged disk or a future server version would leave it. False (with a test
+// failure) if it did not run.
+inline bool TamperSqlite(const std::string& path, const char* sql) {
+  sqlite3* db = nullptr;
+  bool ran = sqlite3_open(path.c_str(), &db) == SQLITE_OK &&
+             sqlite3_exec(db, sql, nullptr, nullptr, nullptr) == SQLITE_OK;
+  EXPECT_TRUE(ran) << sql << ": " << sqlite3_errmsg(db);
+  sqlite3_close(db);
+  return ran;
 }
 
 // A directory of its own under ::testing::TempDir(), removed afterwards.
