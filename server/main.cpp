@@ -14,7 +14,6 @@
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <mutex>
@@ -32,7 +31,7 @@
 #include "service/session_restore.h"
 #include "session/credentials.h"
 #include "session/session_registry.h"
-#include "session/sqlite_session_store.h"
+#include "store_opening.h"
 #include "tools/command_line.h"
 
 namespace {
@@ -61,19 +60,19 @@ int main(int argc, char** argv) {
   sigaddset(&stop_signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
 
-  std::unique_ptr<relmap::session::SqliteSessionStore> store;
-  if (!options.data_dir.empty()) {
-    std::error_code error;
-    std::filesystem::create_directories(options.data_dir, error);
-    auto opened = relmap::session::SqliteSessionStore::Open(options.data_dir + "/relmap.sqlite");
+  std::unique_ptr<relmap::session::SessionStore> store;
+  if (!options.store.empty()) {
+    auto opened = relmap::server::OpenSessionStore(options.store,
+                                                   std::chrono::seconds(options.lease_seconds));
     if (!opened.ok()) {
-      spdlog::error("cannot open the session store in {}: {}", options.data_dir,
-                    opened.status().message());
+      spdlog::error("cannot open the session store {}: {}",
+                    relmap::server::StoreForLogs(options.store), opened.status().message());
       return 1;
     }
     store = std::move(opened).value();
+    spdlog::info("session store {}", relmap::server::StoreForLogs(options.store));
   } else {
-    spdlog::warn("no --data-dir: sessions live in memory only and are lost at exit");
+    spdlog::warn("no --store or --data-dir: sessions live in memory only and are lost at exit");
   }
   relmap::session::SessionRegistry registry(options.max_sessions, store.get());
   registry.set_policy(
@@ -164,12 +163,19 @@ int main(int argc, char** argv) {
   std::thread stopper([&] {
     int signal = 0;
     sigwait(&stop_signals, &signal);
-    spdlog::info("signal {}: draining calls and stopping", signal);
+    // NOT_SERVING first, while calls are still served, so that load balancers and
+    // Kubernetes move traffic away before the server refuses it.
     server->GetHealthCheckService()->SetServingStatus(false);
+    spdlog::info("signal {}: NOT_SERVING, draining for {} s, then stopping", signal,
+                 options.drain_seconds);
+    std::this_thread::sleep_for(std::chrono::seconds(options.drain_seconds));
     server->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(10));
   });
   server->Wait();
   stopper.join();
+  // No call runs any more: hand the sessions over, so another server sharing the
+  // store takes them at once instead of after their leases.
+  registry.ReleaseAll();
   {
     std::lock_guard lock(evictor_mutex);
     stopping = true;

@@ -25,10 +25,20 @@ constexpr std::string_view kUsage =
     "                     [--max-threads 16] [--metrics-listen 127.0.0.1:9464]\n"
     "                     [--metrics-port-file PATH] [--frames-per-session 8]\n"
     "                     [--max-concurrent-frames CORES] [--max-queued-frames THREADS/2]\n"
+    "                     [--store sqlite:PATH|postgres://...] [--lease-seconds 10]\n"
+    "                     [--drain-seconds 0]\n"
     "  --listen      address to serve on; port 0 picks a free port\n"
     "  --port-file   write the port actually bound there (for tests and scripts)\n"
     "  --data-dir    keep sessions and samples in DIR/relmap.sqlite (WAL) and restore them\n"
-    "                at start-up; without it sessions live in memory only\n"
+    "                at start-up; without it (or --store) sessions live in memory only\n"
+    "  --store       sqlite:PATH: the embedded store in one file (what --data-dir does);\n"
+    "                postgres://USER@HOST:PORT/DB?...: a PostgreSQL database that several\n"
+    "                servers share; each session is owned by one server at a time, any\n"
+    "                other takes it over when the owner lets it go, dies or its lease ends\n"
+    "  --lease-seconds  with PostgreSQL: how long a server's hold on a session outlives\n"
+    "                its last call (default 10); a dead server's sessions are free at once\n"
+    "  --drain-seconds  on SIGTERM, report NOT_SERVING on grpc.health.v1 and keep serving\n"
+    "                this long before stopping (default 0; behind a load balancer: 5)\n"
     "  --admin-key-file  a file holding the admin key that create, list and delete need\n"
     "                (as 'x-relmap-admin-key' metadata); default $RELMAP_ADMIN_KEY, or none\n"
     "  --tls-cert, --tls-key  serve TLS with this PEM certificate chain and private key\n"
@@ -59,6 +69,9 @@ constexpr std::string_view kSettings[] = {"listen",
                                           "max-points",
                                           "port-file",
                                           "data-dir",
+                                          "store",
+                                          "lease-seconds",
+                                          "drain-seconds",
                                           "tls-cert",
                                           "tls-key",
                                           "evict-idle-seconds",
@@ -90,6 +103,12 @@ void Apply(ServerOptions& options, std::string_view name, const std::string& val
     options.port_file = value;
   } else if (name == "data-dir") {
     options.data_dir = value;
+  } else if (name == "store") {
+    options.store = value;
+  } else if (name == "lease-seconds") {
+    options.lease_seconds = static_cast<long long>(number());
+  } else if (name == "drain-seconds") {
+    options.drain_seconds = static_cast<long long>(number());
   } else if (name == "tls-cert") {
     options.tls_cert = value;
   } else if (name == "tls-key") {
@@ -180,6 +199,17 @@ ServerOptions ParseServerOptions(int argc, char** argv) {
       options.max_features_per_request < 1 || options.frames_per_session < 1) {
     ExitWithError("relmap-server", "limits must be positive");
   }
+  if (!options.store.empty() && !options.data_dir.empty()) {
+    ExitWithError("relmap-server", "--store and --data-dir are two names of one setting: give one");
+  }
+  if (!options.data_dir.empty()) options.store = "sqlite:" + options.data_dir + "/relmap.sqlite";
+  if (!options.store.empty() && !options.store.starts_with("sqlite:") &&
+      !options.store.starts_with("postgres://") && !options.store.starts_with("postgresql://")) {
+    ExitWithError("relmap-server",
+                  "--store must be sqlite:PATH or postgres://..., got '" + options.store + "'");
+  }
+  if (options.lease_seconds < 1) ExitWithError("relmap-server", "--lease-seconds must be >= 1");
+  if (options.drain_seconds < 0) ExitWithError("relmap-server", "--drain-seconds must be >= 0");
   if (options.max_concurrent_frames == 0) {
     options.max_concurrent_frames = std::max(1u, std::thread::hardware_concurrency());
   }

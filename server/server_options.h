@@ -14,6 +14,14 @@ struct ServerOptions {
   long long max_points = 1280LL * 960LL;
   std::string port_file;
   std::string data_dir;
+  // Where sessions persist: "sqlite:PATH" (one server) or a "postgres://…" URI (a
+  // database that several servers share); --data-dir DIR means sqlite:DIR/relmap.sqlite.
+  std::string store;
+  // With PostgreSQL: how long a server's hold on a session outlives its last call.
+  long long lease_seconds = 10;
+  // On SIGTERM: report NOT_SERVING this long before refusing calls, so that load
+  // balancers move traffic away first.
+  long long drain_seconds = 0;
   std::string admin_key;
   std::string tls_cert;
   std::string tls_key;

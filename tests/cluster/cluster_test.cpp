@@ -1,0 +1,234 @@
+// Two relmap-servers sharing one PostgreSQL behind nginx (deploy/nginx), all real
+// processes on loopback: sessions stay on one server, a server killed with SIGKILL
+// loses no acknowledged sample (the other takes its sessions over), and when it
+// comes back the cluster goes on.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cluster/nginx_process.h"
+#include "integration/test_support.h"
+#include "local_server.h"
+#include "relevance_client.h"
+#include "support/postgres_instance.h"
+
+namespace relmap::testing {
+namespace {
+
+constexpr int kSessions = 6;
+
+// Lines of `path` that mention `session_id` in a call other than CreateSession (which
+// carries no session header and may land on any server).
+int SessionCallsIn(const std::string& path, const std::string& session_id) {
+  std::ifstream in(path);
+  int calls = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.find("session=" + session_id) != std::string::npos &&
+        line.find("rpc=") != std::string::npos &&
+        line.find("rpc=CreateSession") == std::string::npos) {
+      ++calls;
+    }
+  }
+  return calls;
+}
+
+// One server of the cluster, on a fixed port so that nginx's ring keeps it across a
+// restart; its log in `log_path`, appended to across restarts.
+class ClusterServer {
+ public:
+  ClusterServer(std::string store_uri, int port, std::string log_path)
+      : store_uri_(std::move(store_uri)), port_(port), log_path_(std::move(log_path)) {}
+
+  void Start() {
+    client::LocalServerOptions options;
+    options.memory_only = true;  // the store is PostgreSQL
+    // A short lease, so that a session handed back to a restarted server is free
+    // 2 s after its last call on the other one, well within the client's deadline.
+    options.extra_arguments = {"--store",         store_uri_, "--listen",      Address(),
+                               "--lease-seconds", "2",        "--max-threads", "8"};
+    options.log_path = log_path_ + "." + std::to_string(starts_++);
+    auto started = client::LocalServer::Start(RELMAP_SERVER_BINARY, options);
+    ASSERT_TRUE(started.ok()) << started.status().message();
+    process_ = std::move(started).value();
+  }
+  void Kill() {
+    ASSERT_NE(process_, nullptr);
+    ::kill(process_->pid(), SIGKILL);
+    process_.reset();  // reaps it
+  }
+  std::string Address() const { return "127.0.0.1:" + std::to_string(port_); }
+  // Calls on `session_id` in every log this server has written.
+  int CallsOn(const std::string& session_id) const {
+    int calls = 0;
+    for (int i = 0; i < starts_; ++i) {
+      calls += SessionCallsIn(log_path_ + "." + std::to_string(i), session_id);
+    }
+    return calls;
+  }
+  bool Logged(const std::string& text) const {
+    for (int i = 0; i < starts_; ++i) {
+      std::ifstream in(log_path_ + "." + std::to_string(i));
+      std::stringstream all;
+      all << in.rdbuf();
+      if (all.str().find(text) != std::string::npos) return true;
+    }
+    return false;
+  }
+
+ private:
+  std::string store_uri_;
+  int port_;
+  std::string log_path_;
+  int starts_ = 0;
+  std::unique_ptr<client::LocalServer> process_;
+};
+
+struct ExploredSession {
+  client::SessionHandle handle;
+  int acknowledged = 0;  // outcomes the cluster acknowledged
+};
+
+class Cluster : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto postgres = PostgresInstance::Start();
+    ASSERT_TRUE(postgres.ok()) << postgres.status().message();
+    postgres_ = std::move(postgres).value();
+    ASSERT_TRUE(postgres_->CreateDatabase("relmap").ok());
+    for (int i = 0; i < 2; ++i) {
+      servers_.push_back(
+          std::make_unique<ClusterServer>(postgres_->Uri("relmap"), FreeLoopbackPort(),
+                                          directory_.path() + "/server" + std::to_string(i)));
+      servers_.back()->Start();
+      if (HasFatalFailure()) return;
+    }
+    nginx_ = std::make_unique<NginxProcess>(
+        directory_.path() + "/nginx",
+        std::vector<std::string>{servers_[0]->Address(), servers_[1]->Address()});
+    ASSERT_TRUE(nginx_->Start()) << nginx_->LogTail();
+    client_ = std::make_unique<client::RelevanceClient>(nginx_->address());
+  }
+
+  // One push cycle through nginx: maps of a fresh cloud, then the outcome of the
+  // target (alternating labels, so both classes are learned).
+  void Cycle(ExploredSession& session, std::uint32_t seed) {
+    v1::ComputeMapsResponse maps;
+    const grpc::Status computed = client_->ComputeMaps(
+        session.handle, PackedTabletop(160, 120, seed), &maps, client::PointLabels::kOmit);
+    ASSERT_TRUE(computed.ok()) << session.handle.id << ": " << computed.error_message();
+    ASSERT_TRUE(maps.has_target_supervoxel_id());
+    v1::PostOutcomeResponse outcome;
+    const grpc::Status posted = client_->PostOutcome(
+        session.handle, maps.frame_id(), maps.target_supervoxel_id(),
+        seed % 2 == 0 ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE, "", &outcome);
+    ASSERT_TRUE(posted.ok()) << session.handle.id << ": " << posted.error_message();
+    ++session.acknowledged;
+  }
+
+  void Cycles(std::vector<ExploredSession>& sessions, int cycles) {
+    for (int c = 0; c < cycles; ++c) {
+      for (ExploredSession& session : sessions) {
+        Cycle(session, seed_++);
+        if (HasFatalFailure()) return;
+      }
+    }
+  }
+
+  // Every acknowledged outcome is a sample of the session, whichever server answers.
+  void ExpectEveryAcknowledgedSample(const std::vector<ExploredSession>& sessions) {
+    for (const ExploredSession& session : sessions) {
+      v1::GetSessionResponse got;
+      const grpc::Status status = client_->GetSession(session.handle, &got);
+      ASSERT_TRUE(status.ok()) << status.error_message();
+      EXPECT_EQ(got.stats().moveable_samples() + got.stats().non_moveable_samples(),
+                static_cast<std::uint64_t>(session.acknowledged))
+          << session.handle.id;
+    }
+  }
+
+  // Which server served how many of each session's calls so far, for the test's output.
+  void PrintCalls(const std::vector<ExploredSession>& sessions, const std::string& phase) {
+    std::cout << phase << ":";
+    for (const ExploredSession& session : sessions) {
+      std::cout << " " << session.handle.id.substr(0, 6) << "="
+                << servers_[0]->CallsOn(session.handle.id) << "/"
+                << servers_[1]->CallsOn(session.handle.id);
+    }
+    std::cout << " (calls on server 0/server 1)\n";
+  }
+
+  // The server that served `session`'s calls; fails if both did.
+  int OwnerOf(const ExploredSession& session) {
+    const int on0 = servers_[0]->CallsOn(session.handle.id);
+    const int on1 = servers_[1]->CallsOn(session.handle.id);
+    EXPECT_TRUE((on0 > 0) != (on1 > 0))
+        << session.handle.id << ": " << on0 << " calls on server 0, " << on1 << " on server 1";
+    return on0 > 0 ? 0 : 1;
+  }
+
+  TemporaryDirectory directory_;
+  std::unique_ptr<PostgresInstance> postgres_;
+  std::vector<std::unique_ptr<ClusterServer>> servers_;
+  std::unique_ptr<NginxProcess> nginx_;
+  std::unique_ptr<client::RelevanceClient> client_;
+  std::uint32_t seed_ = 1;
+};
+
+TEST_F(Cluster, KeepsEachSessionOnOneServerAndSurvivesTheOwnersKill) {
+  std::vector<ExploredSession> sessions(kSessions);
+  for (ExploredSession& session : sessions) {
+    ASSERT_TRUE(client_->CreateSession({}, &session.handle).ok());
+  }
+  Cycles(sessions, 3);
+  ASSERT_FALSE(HasFatalFailure());
+
+  // Affinity: each session's calls all landed on one server.
+  int on_server_0 = 0;
+  for (const ExploredSession& session : sessions) on_server_0 += OwnerOf(session) == 0 ? 1 : 0;
+  RecordProperty("sessions_on_server_0", on_server_0);
+  PrintCalls(sessions, "before the kill");
+  const int victim = OwnerOf(sessions[0]);
+  const int survivor = 1 - victim;
+
+  // kill -9 of a session's owner: its next calls go to the other server, which takes
+  // the session over with every acknowledged sample.
+  servers_[victim]->Kill();
+  ExpectEveryAcknowledgedSample(sessions);
+  Cycles(sessions, 2);
+  ASSERT_FALSE(HasFatalFailure());
+  for (const ExploredSession& session : sessions) {
+    EXPECT_GT(servers_[survivor]->CallsOn(session.handle.id), 0) << session.handle.id;
+  }
+  EXPECT_TRUE(servers_[survivor]->Logged("restored session=" + sessions[0].handle.id));
+  PrintCalls(sessions, "after the kill");
+
+  // The killed server comes back on its port; nginx returns its sessions to it once
+  // its fail_timeout has passed, and it takes them back from the survivor.
+  servers_[victim]->Start();
+  ASSERT_FALSE(HasFatalFailure());
+  const int calls_before = servers_[victim]->CallsOn(sessions[0].handle.id);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(40);
+  while (servers_[victim]->CallsOn(sessions[0].handle.id) == calls_before &&
+         std::chrono::steady_clock::now() < deadline) {
+    Cycles(sessions, 1);
+    ASSERT_FALSE(HasFatalFailure());
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
+  EXPECT_GT(servers_[victim]->CallsOn(sessions[0].handle.id), calls_before)
+      << "the restarted server got no call of its session back";
+  Cycles(sessions, 2);
+  ASSERT_FALSE(HasFatalFailure());
+  PrintCalls(sessions, "after the restart");
+  ExpectEveryAcknowledgedSample(sessions);
+}
+
+}  // namespace
+}  // namespace relmap::testing
