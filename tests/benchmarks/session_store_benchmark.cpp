@@ -1,18 +1,24 @@
-// Benchmarks of the SQLite session store on the machine's disk: one durable
-// AppendSample (48-d) with synchronous=FULL and NORMAL, and the save and load of
-// the snapshot of a model trained on n = 1000 samples. Wall-clock times: an
-// fsync costs no CPU.
+// Benchmarks of the session stores on the machine's disk: one durable
+// AppendSample (48-d) on SQLite with synchronous=FULL and NORMAL and on
+// PostgreSQL (fsync on, synchronous_commit on), from 1 and 4 threads, and the
+// save and load of the snapshot of a model trained on n = 1000 samples.
+// Wall-clock times: an fsync costs no CPU. The PostgreSQL benchmarks need a
+// server: RELMAP_BENCH_POSTGRES=postgresql://... (they are skipped without it).
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <string>
 
 #include "cmm/collaborative_mixture_models.h"
 #include "datasets/synthetic_problems.h"
+#include "session/postgres_session_store.h"
 #include "session/snapshot_codec.h"
 #include "session/sqlite_session_store.h"
 
@@ -49,9 +55,9 @@ std::unique_ptr<SqliteSessionStore> OpenOrDie(const std::string& path, Synchrono
   return std::move(store).value();
 }
 
-SessionRecord Record(const cmm::CmmConfig& config) {
+SessionRecord Record(const cmm::CmmConfig& config, const std::string& id = "bench") {
   SessionRecord record;
-  record.id = "bench";
+  record.id = id;
   record.token_hash = std::string(64, 'a');
   record.cmm_config = config;
   record.feature_dimension = kDimension;
@@ -87,6 +93,81 @@ void BM_AppendSample(benchmark::State& state) {
 BENCHMARK(BM_AppendSample)
     ->Arg(static_cast<int>(Synchronous::kFull))
     ->Arg(static_cast<int>(Synchronous::kNormal))
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
+
+// Appends from state.threads() threads, each to a session of its own, on one
+// store shared by the threads (as the server's sessions share it).
+void AppendFromThreads(benchmark::State& state, SessionStore& store) {
+  static std::atomic<int> next_session{0};
+  // The pid keeps ids apart across runs on one PostgreSQL database.
+  const std::string session = std::string("bench-")
+                                  .append(std::to_string(getpid()))
+                                  .append("-")
+                                  .append(std::to_string(next_session++));
+  if (Status created = store.CreateSession(Record(cmm::CmmConfig{}, session)); !created.ok()) {
+    state.SkipWithError(created.message().c_str());
+    return;
+  }
+  const datasets::LabelledSamples data = Problem(1000);
+  int i = 0;
+  for (auto _ : state) {
+    const Eigen::VectorXd x = data.features.row(i % 1000).transpose();
+    auto sequence =
+        store.AppendSample(session, std::string("r").append(std::to_string(i)),
+                           std::span<const double>(x.data(), kDimension), data.labels[i % 1000]);
+    if (!sequence.ok()) state.SkipWithError(sequence.status().message().c_str());
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+// SQLite (synchronous=FULL), one connection under a mutex.
+void BM_AppendSampleThreads(benchmark::State& state) {
+  static ScratchDatabase scratch("threads");
+  static std::unique_ptr<SqliteSessionStore> store = OpenOrDie(scratch.path(), Synchronous::kFull);
+  AppendFromThreads(state, *store);
+  state.SetLabel("sqlite synchronous=FULL");
+}
+BENCHMARK(BM_AppendSampleThreads)
+    ->Threads(1)
+    ->Threads(4)
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
+
+// PostgreSQL with a pool of state.range(0) connections, one store per pool size.
+void BM_PostgresAppendSample(benchmark::State& state) {
+  const char* uri = std::getenv("RELMAP_BENCH_POSTGRES");
+  if (uri == nullptr) {
+    state.SkipWithError("RELMAP_BENCH_POSTGRES is not set");
+    return;
+  }
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<PostgresSessionStore>> stores;
+  PostgresSessionStore* store = nullptr;
+  {
+    std::lock_guard lock(mutex);
+    auto& slot = stores[static_cast<int>(state.range(0))];
+    if (slot == nullptr) {
+      PostgresStoreOptions options;
+      options.max_connections = static_cast<int>(state.range(0));
+      auto opened = PostgresSessionStore::Open(uri, options);
+      if (!opened.ok()) {
+        state.SkipWithError(opened.status().message().c_str());
+        return;
+      }
+      slot = std::move(opened).value();
+    }
+    store = slot.get();
+  }
+  AppendFromThreads(state, *store);
+  state.SetLabel("postgres, " + std::to_string(state.range(0)) + " connections");
+}
+BENCHMARK(BM_PostgresAppendSample)
+    ->Args({1})
+    ->Args({4})
+    ->Threads(1)
+    ->Threads(4)
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
 
