@@ -118,15 +118,14 @@ PgParams& PgParams::Float8(double value) {
 
 namespace {
 
-PGconn* ConnectRaw(const std::string& conninfo, const std::string& application_name,
-                   std::chrono::seconds timeout) {
-  const std::string timeout_text = std::to_string(timeout.count());
+PGconn* ConnectRaw(const PgConnectionSettings& settings) {
+  const std::string timeout_text = std::to_string(settings.connect_timeout.count());
   // expand_dbname: `dbname` may be a whole URI or key=value string; the
   // parameters after it override what it says.
   const char* keywords[] = {"dbname", "application_name", "connect_timeout", "client_encoding",
                             nullptr};
-  const char* values[] = {conninfo.c_str(), application_name.c_str(), timeout_text.c_str(), "UTF8",
-                          nullptr};
+  const char* values[] = {settings.conninfo.c_str(), settings.application_name.c_str(),
+                          timeout_text.c_str(), "UTF8", nullptr};
   PGconn* conn = PQconnectdbParams(keywords, values, /*expand_dbname=*/1);
   // libpq prints NOTICEs (CREATE TABLE IF NOT EXISTS of an existing table...) on
   // stderr; the store reports through its statuses only.
@@ -136,55 +135,46 @@ PGconn* ConnectRaw(const std::string& conninfo, const std::string& application_n
   return conn;
 }
 
-// The connection's settings that the store's promises depend on.
-Status Configure(PgConnection& connection) {
-  // A commit is acknowledged only once it is on the server's disk. A database
-  // configured with synchronous_commit = off would acknowledge before; raise it to
-  // local, and keep any stronger setting (on, remote_write, remote_apply).
-  auto setting =
-      connection.Execute("SELECT current_setting('synchronous_commit')", {}, "reading settings");
-  if (!setting.ok()) return setting.status();
-  if (setting->Bytes(0, 0) == "off") {
-    return connection.ExecuteScript("SET synchronous_commit = local", "raising synchronous_commit");
-  }
-  return OkStatus();
-}
-
 }  // namespace
 
-StatusOr<std::unique_ptr<PgConnection>> PgConnection::Connect(const std::string& conninfo,
-                                                              const std::string& application_name,
-                                                              std::chrono::seconds timeout) {
-  PGconn* conn = ConnectRaw(conninfo, application_name, timeout);
+Status PgConnection::Configure() {
+  // A commit is acknowledged only once it is on the server's disk. A database
+  // configured with synchronous_commit = off would acknowledge before; raise it
+  // to local, and keep any stronger setting (on, remote_write, remote_apply).
+  const std::string lock_timeout = std::to_string(settings_.lock_timeout.count());
+  auto configured = Execute(
+      "SELECT set_config('synchronous_commit', 'local', false)"
+      " WHERE current_setting('synchronous_commit') = 'off'"
+      " UNION ALL SELECT set_config('lock_timeout', $1, false)"
+      " UNION ALL SELECT set_config('idle_in_transaction_session_timeout', $1, false)",
+      PgParams().Text(lock_timeout), "configuring the connection");
+  return configured.status();
+}
+
+StatusOr<std::unique_ptr<PgConnection>> PgConnection::Connect(
+    const PgConnectionSettings& settings) {
+  PGconn* conn = ConnectRaw(settings);
   if (conn == nullptr) return Status(StatusCode::kUnavailable, "PostgreSQL: out of memory");
-  std::unique_ptr<PgConnection> connection(
-      new PgConnection(conn, conninfo, application_name, timeout));
+  std::unique_ptr<PgConnection> connection(new PgConnection(conn, settings));
   if (PQstatus(conn) != CONNECTION_OK) {
     return Status(StatusCode::kUnavailable,
                   "cannot connect to PostgreSQL: " + Trimmed(PQerrorMessage(conn)));
   }
-  if (Status status = Configure(*connection); !status.ok()) return status;
+  if (Status status = connection->Configure(); !status.ok()) return status;
   return connection;
 }
-
-PgConnection::PgConnection(PGconn* conn, std::string conninfo, std::string application_name,
-                           std::chrono::seconds timeout)
-    : conn_(conn),
-      conninfo_(std::move(conninfo)),
-      application_name_(std::move(application_name)),
-      timeout_(timeout) {}
 
 PgConnection::~PgConnection() { PQfinish(conn_); }
 
 Status PgConnection::Reconnect() {
   PQfinish(conn_);
-  conn_ = ConnectRaw(conninfo_, application_name_, timeout_);
+  conn_ = ConnectRaw(settings_);
   if (conn_ == nullptr || PQstatus(conn_) != CONNECTION_OK) {
     return Status(StatusCode::kUnavailable,
                   "cannot reconnect to PostgreSQL: " +
                       Trimmed(conn_ != nullptr ? PQerrorMessage(conn_) : "out of memory"));
   }
-  return Configure(*this);
+  return Configure();
 }
 
 Status PgConnection::ErrorOf(const PGresult* result, std::string_view what) const {
@@ -264,13 +254,6 @@ Status PgTransaction::Commit() {
   return OkStatus();
 }
 
-PostgresConnectionPool::PostgresConnectionPool(std::string conninfo, std::string application_name,
-                                               std::chrono::seconds timeout, int size)
-    : conninfo_(std::move(conninfo)),
-      application_name_(std::move(application_name)),
-      timeout_(timeout),
-      free_slots_(size) {}
-
 PostgresConnectionPool::~PostgresConnectionPool() = default;
 
 PostgresConnectionPool::Lease::~Lease() {
@@ -292,7 +275,7 @@ StatusOr<PostgresConnectionPool::Lease> PostgresConnectionPool::Take() {
   // Connecting happens outside the lock: it may take up to the connect timeout.
   Status status;
   if (connection == nullptr) {
-    auto opened = PgConnection::Connect(conninfo_, application_name_, timeout_);
+    auto opened = PgConnection::Connect(settings_);
     if (opened.ok()) {
       connection = std::move(opened).value();
     } else {

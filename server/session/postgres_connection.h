@@ -72,14 +72,23 @@ class PgParams {
   std::deque<std::string> owned_;  // numbers in network byte order; a deque never moves them
 };
 
+// What every connection of a store is opened with.
+struct PgConnectionSettings {
+  std::string conninfo;          // a URI or key=value string
+  std::string application_name;  // replaces any in conninfo
+  std::chrono::seconds connect_timeout{5};
+  // How long a statement waits for a row lock (lock_timeout), and how long the
+  // server keeps a transaction its client left open
+  // (idle_in_transaction_session_timeout): a client that died mid-transaction
+  // holds its rows no longer than that.
+  std::chrono::milliseconds lock_timeout{10'000};
+};
+
 // One libpq connection. Not thread-safe: the pool hands it to one caller at a time.
 class PgConnection {
  public:
-  // Connects to `conninfo` (a URI or key=value string) as `application_name`.
-  // Any failure → UNAVAILABLE with libpq's message.
-  static StatusOr<std::unique_ptr<PgConnection>> Connect(const std::string& conninfo,
-                                                         const std::string& application_name,
-                                                         std::chrono::seconds timeout);
+  // Connects as `settings` say. Any failure → UNAVAILABLE with libpq's message.
+  static StatusOr<std::unique_ptr<PgConnection>> Connect(const PgConnectionSettings& settings);
   ~PgConnection();
   PgConnection(const PgConnection&) = delete;
   PgConnection& operator=(const PgConnection&) = delete;
@@ -104,14 +113,14 @@ class PgConnection {
   Status Reconnect();
 
  private:
-  PgConnection(PGconn* conn, std::string conninfo, std::string application_name,
-               std::chrono::seconds timeout);
+  PgConnection(PGconn* conn, const PgConnectionSettings& settings)
+      : conn_(conn), settings_(settings) {}
+  // Sets the session parameters the store relies on.
+  Status Configure();
   Status ErrorOf(const PGresult* result, std::string_view what) const;
 
   PGconn* conn_;
-  std::string conninfo_;
-  std::string application_name_;
-  std::chrono::seconds timeout_;
+  PgConnectionSettings settings_;
 };
 
 // A transaction that rolls back on destruction unless Commit succeeded.
@@ -136,8 +145,8 @@ class PgTransaction {
 // Up to `size` connections, opened on first need and reopened when broken.
 class PostgresConnectionPool {
  public:
-  PostgresConnectionPool(std::string conninfo, std::string application_name,
-                         std::chrono::seconds timeout, int size);
+  PostgresConnectionPool(PgConnectionSettings settings, int size)
+      : settings_(std::move(settings)), free_slots_(size) {}
   ~PostgresConnectionPool();
 
   // A connection for one operation, returned to the pool on destruction.
@@ -163,9 +172,7 @@ class PostgresConnectionPool {
  private:
   void Return(std::unique_ptr<PgConnection> connection);
 
-  const std::string conninfo_;
-  const std::string application_name_;
-  const std::chrono::seconds timeout_;
+  const PgConnectionSettings settings_;
   std::mutex mutex_;
   std::condition_variable returned_;
   std::vector<std::unique_ptr<PgConnection>> idle_;  // guarded by mutex_

@@ -50,6 +50,8 @@ Status CheckOptions(const PostgresStoreOptions& options) {
   if (options.connect_timeout.count() < 1) {
     return InvalidArgumentError("connect timeout must be at least 1 s");
   }
+  if (options.lock_timeout.count() < 1)
+    return InvalidArgumentError("lock timeout must be positive");
   const std::string& id = options.owner_id;
   if (id.size() > kMaxOwnerIdLength || !std::all_of(id.begin(), id.end(), PrintableAscii)) {
     return InvalidArgumentError("owner id " + Quoted(id) +
@@ -78,7 +80,9 @@ StatusOr<std::unique_ptr<PostgresSessionStore>> PostgresSessionStore::Open(
   PostgresStoreOptions resolved = options;
   if (resolved.owner_id.empty()) resolved.owner_id = GeneratedOwnerId();
   auto pool = std::make_unique<PostgresConnectionPool>(
-      conninfo, resolved.owner_id, resolved.connect_timeout, resolved.max_connections);
+      PgConnectionSettings{conninfo, resolved.owner_id, resolved.connect_timeout,
+                           resolved.lock_timeout},
+      resolved.max_connections);
   {
     // Connect now, so that a wrong address fails at startup, not at the first call.
     auto connection = pool->Take();

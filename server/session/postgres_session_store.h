@@ -33,6 +33,11 @@ struct PostgresStoreOptions {
   int max_connections = 4;
   // How long opening a connection may take before the call fails with UNAVAILABLE.
   std::chrono::seconds connect_timeout{5};
+  // How long a call waits for a session's owner row while another server's call
+  // holds it, before failing with UNAVAILABLE; also how long PostgreSQL keeps a
+  // transaction open whose server stopped talking mid-way (it is then ended and
+  // its locks freed). The store's own transactions last milliseconds.
+  std::chrono::milliseconds lock_timeout{10'000};
   // This store's name as an owner of sessions, also the application_name of its
   // connections (which is how other servers see that it is alive): at most 63
   // printable ASCII characters, unique among the servers sharing the database.

@@ -4,6 +4,7 @@
 #include "session/postgres_session_store.h"
 
 #include <gtest/gtest.h>
+#include <libpq-fe.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -300,6 +301,29 @@ TEST_F(PostgresOwnership, DeletedByAnotherServerIsNotFoundForTheOwner) {
   ASSERT_TRUE(b->DeleteSession("s").ok());
   EXPECT_EQ(a->AppendSample("s", "r1", x_, 1).status().code(), StatusCode::kNotFound);
   EXPECT_EQ(a->AcquireOwnership("s").status().code(), StatusCode::kNotFound);
+}
+
+TEST_F(PostgresOwnership, OwnerRowLockedByAStuckTransactionIsUnavailableAfterTheLockTimeout) {
+  PostgresStoreOptions impatient;
+  impatient.lock_timeout = std::chrono::milliseconds(200);
+  auto a = OpenServer(impatient);
+  ASSERT_TRUE(a->CreateSession(MakeRecord("s")).ok());
+  // A server that stopped mid-transaction while holding the row.
+  PGconn* stuck = PQconnectdb(uri_.c_str());
+  ASSERT_EQ(PQstatus(stuck), CONNECTION_OK) << PQerrorMessage(stuck);
+  PQclear(PQexec(stuck, "BEGIN"));
+  PGresult* locked = PQexec(stuck, "SELECT 1 FROM session_owners FOR UPDATE");
+  EXPECT_EQ(PQresultStatus(locked), PGRES_TUPLES_OK) << PQerrorMessage(stuck);
+  PQclear(locked);
+
+  const auto start = std::chrono::steady_clock::now();
+  const Status status = a->AcquireOwnership("s").status();
+  const auto waited = std::chrono::steady_clock::now() - start;
+  EXPECT_EQ(status.code(), StatusCode::kUnavailable) << status.message();
+  EXPECT_TRUE(Contains(status.message(), "lock timeout")) << status.message();
+  EXPECT_LT(waited, std::chrono::seconds(5));
+  PQfinish(stuck);  // its transaction ends with its connection
+  EXPECT_TRUE(a->AcquireOwnership("s").ok());
 }
 
 using PostgresConnections = PostgresOwnership;
