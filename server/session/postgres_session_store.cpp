@@ -50,8 +50,9 @@ Status CheckOptions(const PostgresStoreOptions& options) {
   if (options.connect_timeout.count() < 1) {
     return InvalidArgumentError("connect timeout must be at least 1 s");
   }
-  if (options.lock_timeout.count() < 1)
+  if (options.lock_timeout.count() < 1) {
     return InvalidArgumentError("lock timeout must be positive");
+  }
   const std::string& id = options.owner_id;
   if (id.size() > kMaxOwnerIdLength || !std::all_of(id.begin(), id.end(), PrintableAscii)) {
     return InvalidArgumentError("owner id " + Quoted(id) +
