@@ -42,12 +42,14 @@ void InstallStopHandlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-int Usage() {
-  std::fprintf(stderr,
+// The usage on standard error with exit code 2 (a bad command line), or on standard
+// output with 0 when asked for (--help).
+int Usage(bool asked = false) {
+  std::fprintf(asked ? stdout : stderr,
                "usage: relmap-robot run --config FILE [--server ADDR] [--dry-run] "
                "[--max-pushes N]\n"
                "       relmap-robot replay RUN_DIR [--server ADDR]\n");
-  return 2;
+  return asked ? 0 : 2;
 }
 
 int Fail(const Status& status) {
@@ -227,6 +229,7 @@ int Replay(const std::vector<std::string>& args) {
 int main(int argc, char** argv) {
   if (argc < 2) return relmap::robot::Usage();
   const std::string command = argv[1];
+  if (command == "--help" || command == "-h") return relmap::robot::Usage(/*asked=*/true);
   const std::vector<std::string> args(argv + 2, argv + argc);
   if (command == "run") return relmap::robot::Run(args);
   if (command == "replay") return relmap::robot::Replay(args);

@@ -15,6 +15,7 @@ packages=(
   python3-grpcio python3-protobuf  # scripts/grpcurl-lite
   libpq-dev postgresql  # the shared session store and its tests
   nginx python3-yaml    # the cluster test's load balancer; deploy/ YAML checks
+  file                  # cpack -G DEB (dpkg-shlibdeps)
 )
 
 missing=()

@@ -121,6 +121,9 @@ int main(int argc, char** argv) {
     spdlog::error("cannot listen on {}", options.listen);
     return 1;
   }
+  // Probes may ask for the whole server ("") or for the service by name.
+  server->GetHealthCheckService()->SetServingStatus(
+      relmap::v1::RelevanceService::service_full_name(), true);
   spdlog::info("relmap-server listening on {} (port {}, {}, at most {} worker threads)",
                options.listen, port, options.tls_cert.empty() ? "plaintext" : "TLS",
                options.max_threads);

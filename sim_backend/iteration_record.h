@@ -44,8 +44,8 @@ struct IterationRecord {
   // The pushed supervoxel; unset when the frame had no usable one.
   std::optional<std::uint32_t> target;
   // The label the session learned (true = moveable) and the ground truth of the
-  // target; both unset when no outcome was posted (no target, or a physical push the
-  // simulator could not execute).
+  // target; both unset when no outcome was learned (no target, a physical push the
+  // simulator could not execute, or a server that no longer had the frame).
   std::optional<bool> label;
   std::optional<bool> truth;
   // Learned labels that differ from the ground truth of their target, so far.

@@ -14,7 +14,7 @@
 namespace relmap::testing {
 namespace {
 
-TEST(Drain, ReportsNotServingAndKeepsAnsweringUntilTheDrainEnds) {
+TEST(Drain, ReportsNotServingForTheServerAndItsServiceAndKeepsAnsweringUntilTheDrainEnds) {
   client::LocalServerOptions options;
   options.memory_only = true;
   options.extra_arguments = {"--drain-seconds", "2"};
@@ -22,16 +22,21 @@ TEST(Drain, ReportsNotServingAndKeepsAnsweringUntilTheDrainEnds) {
   ASSERT_TRUE(server.ok()) << server.status().message();
   auto client = std::make_unique<client::RelevanceClient>((*server)->address());
   grpc::health::v1::HealthCheckResponse health;
-  ASSERT_TRUE(client->CheckHealth("", &health).ok());
-  EXPECT_EQ(health.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+  constexpr char kService[] = "relmap.v1.RelevanceService";
+  for (const std::string service : {"", kService}) {
+    ASSERT_TRUE(client->CheckHealth(service, &health).ok()) << service;
+    EXPECT_EQ(health.status(), grpc::health::v1::HealthCheckResponse::SERVING) << service;
+  }
   client::SessionHandle session;
   ASSERT_TRUE(client->CreateSession({}, &session).ok());
 
   const auto terminated = std::chrono::steady_clock::now();
   ::kill((*server)->pid(), SIGTERM);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  ASSERT_TRUE(client->CheckHealth("", &health).ok());
-  EXPECT_EQ(health.status(), grpc::health::v1::HealthCheckResponse::NOT_SERVING);
+  for (const std::string service : {"", kService}) {
+    ASSERT_TRUE(client->CheckHealth(service, &health).ok()) << service;
+    EXPECT_EQ(health.status(), grpc::health::v1::HealthCheckResponse::NOT_SERVING) << service;
+  }
   v1::GetSessionResponse got;
   EXPECT_TRUE(client->GetSession(session, &got).ok()) << "a draining server still answers";
 
