@@ -161,14 +161,16 @@ grpc::Status RelevanceClient::DeleteSession(const SessionHandle& session) {
 
 grpc::Status RelevanceClient::ComputeMaps(const SessionHandle& session, const v1::Cloud& cloud,
                                           v1::ComputeMapsResponse* response,
-                                          PointLabels point_labels) {
+                                          PointLabels point_labels, MapsRepeat repeat) {
   v1::ComputeMapsRequest request;
   request.set_session_id(session.id);
   *request.mutable_cloud() = cloud;
   request.set_omit_point_labels(point_labels == PointLabels::kOmit);
-  // A repeat would draw another target and cache another frame.
+  // A repeat would draw another target and cache another frame: only when asked.
   return Invoke(&v1::RelevanceService::Stub::ComputeMaps, request, response,
-                Idempotence::kNotIdempotent, SessionMetadata(session));
+                repeat == MapsRepeat::kAfterBrokenConnection ? Idempotence::kIdempotent
+                                                             : Idempotence::kNotIdempotent,
+                SessionMetadata(session));
 }
 
 grpc::Status RelevanceClient::PostOutcome(const SessionHandle& session, std::uint64_t frame_id,

@@ -26,6 +26,14 @@ namespace relmap::client {
 // only with the supervoxels and the target (a third of the bytes for a Kinect frame).
 enum class PointLabels { kInclude, kOmit };
 
+// Whether ComputeMaps is repeated after a broken connection (UNAVAILABLE), when the
+// server may or may not have computed the frame. Never, by default: a repeat after
+// a frame that was computed draws another target, so the session's frame ids and
+// draws skip one and a seeded run no longer replays bit for bit. A client that would
+// rather lose a frame than stop (a robot or simulator behind a load balancer, whose
+// server may die mid-call) repeats it: the call then lands on the next server.
+enum class MapsRepeat { kNever, kAfterBrokenConnection };
+
 // A session as the client holds it.
 struct SessionHandle {
   std::string id;
@@ -49,7 +57,8 @@ class RelevanceClient {
   grpc::Status DeleteSession(const SessionHandle& session);
   grpc::Status ComputeMaps(const SessionHandle& session, const v1::Cloud& cloud,
                            v1::ComputeMapsResponse* response,
-                           PointLabels point_labels = PointLabels::kInclude);
+                           PointLabels point_labels = PointLabels::kInclude,
+                           MapsRepeat repeat = MapsRepeat::kNever);
   // PostOutcome and AddSamples are deduplicated by the server on `request_id`; an
   // empty one is replaced by a fresh random id, so that these calls are always safe
   // to retry. Pass your own to make a repeat after a client crash harmless too.

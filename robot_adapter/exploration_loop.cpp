@@ -178,8 +178,9 @@ Status ExplorationLoop::Iterate(int iteration, RunSummary* summary) {
     v1::ComputeMapsResponse maps;
     const client::PointLabels labels =
         before.truth ? client::PointLabels::kInclude : client::PointLabels::kOmit;
-    if (Status s =
-            FromGrpc(client_.ComputeMaps(session_, before.cloud, &maps, labels), "ComputeMaps");
+    if (Status s = FromGrpc(client_.ComputeMaps(session_, before.cloud, &maps, labels,
+                                                client::MapsRepeat::kAfterBrokenConnection),
+                            "ComputeMaps");
         !s.ok()) {
       return s;
     }

@@ -120,8 +120,10 @@ class Replication {
 
     stage = Clock::now();
     v1::ComputeMapsResponse maps;
-    Status status = FromGrpc(
-        client_.ComputeMaps(session_, cloud, &maps, client::PointLabels::kInclude), "ComputeMaps");
+    Status status =
+        FromGrpc(client_.ComputeMaps(session_, cloud, &maps, client::PointLabels::kInclude,
+                                     client::MapsRepeat::kAfterBrokenConnection),
+                 "ComputeMaps");
     if (!status.ok()) return status;
     t.maps_ms = MillisecondsSince(stage);
     t.server_maps_ms = maps.timings().total_ms();

@@ -161,6 +161,17 @@ TEST_F(ClientAgainstFlakyServer, DoesNotRepeatComputeMapsThatMayHaveRun) {
   EXPECT_EQ(service.calls(), 1);
 }
 
+TEST_F(ClientAgainstFlakyServer, RepeatsComputeMapsAfterABrokenConnectionWhenAskedTo) {
+  FlakyService service(1, grpc::Status(grpc::StatusCode::UNAVAILABLE, "reset"));
+  Start(&service);
+  v1::ComputeMapsResponse response;
+  EXPECT_TRUE(client_
+                  ->ComputeMaps(session_, v1::Cloud{}, &response, client::PointLabels::kInclude,
+                                client::MapsRepeat::kAfterBrokenConnection)
+                  .ok());
+  EXPECT_EQ(service.calls(), 2);
+}
+
 TEST_F(ClientAgainstFlakyServer, RepeatsComputeMapsThatABusyServerTurnedAway) {
   FlakyService service(2, kThreadpoolExhausted);
   Start(&service);
