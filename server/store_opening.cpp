@@ -26,7 +26,7 @@ StatusOr<std::unique_ptr<session::SessionStore>> OpenSessionStore(const std::str
     if (path.empty()) return InvalidArgumentError("--store sqlite: needs a file path");
     std::error_code ignored;  // Open reports a directory it cannot write to
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ignored);
-    auto opened = session::SqliteSessionStore::Open(path.string());
+    auto opened = session::SqliteSessionStore::Open(path.string(), {.exclusive = true});
     if (!opened.ok()) return opened.status();
     return std::unique_ptr<session::SessionStore>(std::move(opened).value());
   }

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "session/file_lock.h"
 #include "session/snapshot_codec.h"
 #include "session/sqlite_schema.h"
 #include "session/sqlite_statement.h"
@@ -17,7 +18,8 @@
 namespace relmap::session {
 
 struct SqliteSessionStore::Connection {
-  SqliteConnection db;  // declared first: the statements are finalised before it closes
+  FileLock claim;       // released last, once the database is closed
+  SqliteConnection db;  // declared before the statements: they are finalised before it closes
   Statement insert_session;
   Statement select_session;
   Statement select_dimension;
@@ -75,6 +77,16 @@ StatusOr<Statement> PrepareKeepingFirstError(sqlite3* db, std::string_view sql,
 
 StatusOr<std::unique_ptr<SqliteSessionStore>> SqliteSessionStore::Open(
     const std::string& path, const SqliteStoreOptions& options) {
+  FileLock claim;
+  if (options.exclusive) {
+    auto acquired = FileLock::Acquire(path + ".lock");
+    if (!acquired.ok()) {
+      if (acquired.status().code() != StatusCode::kFailedPrecondition) return acquired.status();
+      return FailedPreconditionError(Quoted(path) + " is in use by another server (it holds " +
+                                     path + ".lock); one store file serves one server");
+    }
+    claim = std::move(acquired).value();
+  }
   sqlite3* raw = nullptr;
   // NOMUTEX: the store's own mutex already serialises every use of the
   // connection, so SQLite's per-call locking would be paid for nothing.
@@ -155,14 +167,15 @@ StatusOr<std::unique_ptr<SqliteSessionStore>> SqliteSessionStore::Open(
       " interactions = interactions + ?3 WHERE id = ?1");
   if (!error.ok()) return error;
 
-  auto connection = std::unique_ptr<Connection>(new Connection{
-      std::move(db), std::move(insert_session).value(), std::move(select_session).value(),
-      std::move(select_dimension).value(), std::move(list_sessions).value(),
-      std::move(delete_samples).value(), std::move(delete_snapshot).value(),
-      std::move(delete_session).value(), std::move(select_sample_by_request).value(),
-      std::move(count_samples).value(), std::move(insert_sample).value(),
-      std::move(select_samples).value(), std::move(upsert_snapshot).value(),
-      std::move(select_snapshot).value(), std::move(increment_counters).value()});
+  auto connection = std::unique_ptr<Connection>(
+      new Connection{std::move(claim), std::move(db), std::move(insert_session).value(),
+                     std::move(select_session).value(), std::move(select_dimension).value(),
+                     std::move(list_sessions).value(), std::move(delete_samples).value(),
+                     std::move(delete_snapshot).value(), std::move(delete_session).value(),
+                     std::move(select_sample_by_request).value(), std::move(count_samples).value(),
+                     std::move(insert_sample).value(), std::move(select_samples).value(),
+                     std::move(upsert_snapshot).value(), std::move(select_snapshot).value(),
+                     std::move(increment_counters).value()});
   return std::unique_ptr<SqliteSessionStore>(new SqliteSessionStore(std::move(connection)));
 }
 

@@ -27,6 +27,11 @@ struct SqliteStoreOptions {
   // How long a statement waits for a lock held by another process before
   // failing with UNAVAILABLE.
   std::chrono::milliseconds busy_timeout{5000};
+  // Claims the file for this store alone (a lock on PATH.lock): a second exclusive
+  // Open of the same file, in any process, is FAILED_PRECONDITION until this store
+  // closes or its process dies. A server sets it, so that two servers never share
+  // one file, which this store's ownership (every session its own) assumes.
+  bool exclusive = false;
 };
 
 // Thread-safe through one mutex around one connection. SQLite admits one

@@ -43,6 +43,21 @@ TEST_F(SqliteSessionStoreFile, MissingDirectoryIsUnavailable) {
       << store.status().message();
 }
 
+TEST_F(SqliteSessionStoreFile, AnExclusiveStoreKeepsOtherExclusiveOpensOutUntilItCloses) {
+  const SqliteStoreOptions exclusive{.exclusive = true};
+  auto first = SqliteSessionStore::Open(path_, exclusive);
+  ASSERT_TRUE(first.ok()) << first.status().message();
+  auto second = SqliteSessionStore::Open(path_, exclusive);
+  ASSERT_FALSE(second.ok());
+  EXPECT_EQ(second.status().code(), StatusCode::kFailedPrecondition);
+  EXPECT_NE(second.status().message().find("in use by another server"), std::string::npos)
+      << second.status().message();
+  // Tools and tests that only read or repair the file are not exclusive.
+  EXPECT_TRUE(SqliteSessionStore::Open(path_).ok());
+  first->reset();
+  EXPECT_TRUE(SqliteSessionStore::Open(path_, exclusive).ok());
+}
+
 TEST(SnapshotCodec, EveryTruncationIsDataLoss) {
   auto model = cmm::CollaborativeMixtureModels::Create(cmm::CmmConfig{}, 2).value();
   ASSERT_TRUE(model.Add(Eigen::Vector2d(0, 0), 1).ok());
