@@ -258,6 +258,11 @@ grpc::Status RelevanceClient::CheckHealth(const std::string& service,
       Idempotence::kIdempotent, {});
 }
 
+bool IsFrameGone(const grpc::Status& status) {
+  return status.error_code() == grpc::StatusCode::FAILED_PRECONDITION &&
+         status.error_message().starts_with("frame ");
+}
+
 v1::Cloud PcdCloud(std::string pcd_bytes) {
   v1::Cloud cloud;
   cloud.set_pcd(std::move(pcd_bytes));

@@ -66,6 +66,7 @@ class RelevanceClient {
                            std::uint32_t supervoxel_id, v1::Label label,
                            const std::string& request_id, v1::PostOutcomeResponse* response);
   // The outcome as the cloud after the push: the server's change detector labels it.
+  // Either PostOutcome fails as IsFrameGone when the server has lost the frame.
   grpc::Status PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
                            std::uint32_t supervoxel_id, const v1::Cloud& after_cloud,
                            const std::string& request_id, v1::PostOutcomeResponse* response);
@@ -79,8 +80,9 @@ class RelevanceClient {
   grpc::Status ImportSession(const v1::SessionState& state, SessionHandle* session,
                              v1::ImportSessionResponse* response = nullptr);
 
-  // grpc.health.v1.Health/Check of `service`: "" is the whole server (the only name
-  // relmap-server answers for; others are NOT_FOUND). What load balancers and probes
+  // grpc.health.v1.Health/Check of `service`: "" is the whole server, which
+  // relmap-server answers for, as for "relmap.v1.RelevanceService" (other names are
+  // NOT_FOUND). What load balancers and probes
   // ask; a server that drains before it stops answers NOT_SERVING. Retried like any
   // idempotent call, within the deadline.
   grpc::Status CheckHealth(const std::string& service,
@@ -132,6 +134,14 @@ class RelevanceClient {
   std::string admin_key_;
   std::atomic<std::uint64_t> retries_{0};
 };
+
+// Whether a PostOutcome failed because the server no longer has the frame it names:
+// evicted from the session's cache, or lost with the server that computed it (a
+// restart, or the session taken over by another server: frames live in the memory
+// of the server that made them). Nothing was learned; the caller goes on from new
+// maps. relmap-server's message for it starts with "frame ", its other
+// FAILED_PRECONDITION answers with "session ".
+bool IsFrameGone(const grpc::Status& status);
 
 // A cloud message carrying the bytes of a PCD file.
 v1::Cloud PcdCloud(std::string pcd_bytes);

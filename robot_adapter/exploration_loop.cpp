@@ -250,11 +250,8 @@ Status ExplorationLoop::Iterate(int iteration, RunSummary* summary) {
                                    request_id, &posted);
       after_ = std::move(*after);
     }
-    if (answer.error_code() == grpc::StatusCode::FAILED_PRECONDITION &&
-        answer.error_message().starts_with("frame ")) {
-      // The server serving the session now no longer has the frame (it restarted, or
-      // took the session over from another one): the push is done but cannot be
-      // learned; the next iteration starts from new maps.
+    if (client::IsFrameGone(answer)) {
+      // The push is done but cannot be learned; the next iteration starts from new maps.
       status.set_state("failed");
       status.set_message("pushed, but the server no longer has the frame: " +
                          answer.error_message());

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "store_opening.h"
 #include "tools/command_line.h"
 
 namespace relmap::server {
@@ -203,8 +204,7 @@ ServerOptions ParseServerOptions(int argc, char** argv) {
     ExitWithError("relmap-server", "--store and --data-dir are two names of one setting: give one");
   }
   if (!options.data_dir.empty()) options.store = "sqlite:" + options.data_dir + "/relmap.sqlite";
-  if (!options.store.empty() && !options.store.starts_with("sqlite:") &&
-      !options.store.starts_with("postgres://") && !options.store.starts_with("postgresql://")) {
+  if (!options.store.empty() && !IsStoreSpec(options.store)) {
     ExitWithError("relmap-server",
                   "--store must be sqlite:PATH or postgres://..., got '" + options.store + "'");
   }

@@ -19,6 +19,8 @@ bool IsPostgresUri(std::string_view spec) {
 
 }  // namespace
 
+bool IsStoreSpec(std::string_view spec) { return spec.starts_with(kSqlite) || IsPostgresUri(spec); }
+
 StatusOr<std::unique_ptr<session::SessionStore>> OpenSessionStore(const std::string& spec,
                                                                   std::chrono::seconds lease) {
   if (spec.starts_with(kSqlite)) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "common/status.h"
 #include "session/session_store.h"
@@ -16,6 +17,10 @@ namespace relmap::server {
 // keeps its own status (UNAVAILABLE, DATA_LOSS, FAILED_PRECONDITION).
 StatusOr<std::unique_ptr<session::SessionStore>> OpenSessionStore(const std::string& spec,
                                                                   std::chrono::seconds lease);
+
+// Whether `spec` has the form of a store OpenSessionStore opens: "sqlite:…",
+// "postgres://…" or "postgresql://…".
+bool IsStoreSpec(std::string_view spec);
 
 // The store named without its credentials, for logs: "sqlite:/var/lib/relmap/relmap.sqlite",
 // "postgres://db:5432/relmap".

@@ -212,13 +212,8 @@ class Replication {
           client_.PostOutcome(session_, maps.frame_id(), target.id(), after, request_id, &response);
       record->timings.outcome_ms = MillisecondsSince(stage);
     }
-    if (posted.error_code() == grpc::StatusCode::FAILED_PRECONDITION &&
-        posted.error_message().starts_with("frame ")) {
-      // The server serving the session now no longer has the frame: it restarted, or
-      // took the session over from another server (frames live in memory only). The
-      // push taught nothing; the next iteration asks for new maps.
-      return OkStatus();
-    }
+    // The push taught nothing; the next iteration asks for new maps.
+    if (client::IsFrameGone(posted)) return OkStatus();
     if (Status status = FromGrpc(posted, "PostOutcome"); !status.ok()) return status;
     const bool label = response.label() == v1::LABEL_MOVEABLE;
     record->label = label;

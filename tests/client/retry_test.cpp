@@ -56,6 +56,15 @@ TEST(IsRetryable, AnswersAreNeverRetried) {
   }
 }
 
+TEST(IsFrameGone, IsTheServersAnswerForAFrameItNoLongerHasAndNoOther) {
+  EXPECT_TRUE(IsFrameGone(grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
+                                       "frame 17 of session ab is unknown or no longer cached "
+                                       "(the cache keeps the last 8 frames)")));
+  EXPECT_FALSE(IsFrameGone(grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
+                                        "session ab has learned samples already")));
+  EXPECT_FALSE(IsFrameGone(grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, "frame 17 has 3")));
+}
+
 TEST(BackoffBefore, DoublesFromTheInitialWaitUpToTheCapWithJitterAroundIt) {
   RetryPolicy policy;
   policy.initial_backoff = milliseconds(100);

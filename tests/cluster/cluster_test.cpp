@@ -133,8 +133,7 @@ class Cluster : public ::testing::Test {
     const grpc::Status posted = client_->PostOutcome(
         session.handle, maps.frame_id(), maps.target_supervoxel_id(),
         seed % 2 == 0 ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE, "", &outcome);
-    if (posted.error_code() == grpc::StatusCode::FAILED_PRECONDITION &&
-        posted.error_message().starts_with("frame ")) {
+    if (client::IsFrameGone(posted)) {
       ++session.frames_lost;
       return;
     }
