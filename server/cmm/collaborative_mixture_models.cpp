@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "cmm/log_math.h"
+
 namespace relmap::cmm {
 
 CollaborativeMixtureModels::CollaborativeMixtureModels(const CmmConfig& config, int dimension)
@@ -34,10 +36,13 @@ StatusOr<UpdateReport> CollaborativeMixtureModels::Add(const Eigen::Ref<const Ei
     return InvalidArgumentError("label must be 0 or 1, got " + std::to_string(label));
   }
 
-  // Step 1: append to S.
+  // Step 1: append to S (and let the prior follow the data).
   data_.Append(x, label);
   InvalidateLikelihood(0);
   InvalidateLikelihood(1);
+  if (config_.covariance == CovarianceEstimate::kPooledPrior && IsPriorCheckpoint(data_.size())) {
+    RefreshPrior();
+  }
   const int sample = data_.size() - 1;
   UpdateReport report;
   report.label = label;
@@ -46,19 +51,51 @@ StatusOr<UpdateReport> CollaborativeMixtureModels::Add(const Eigen::Ref<const Ei
   auto& mixture = components_[label];
   if (mixture.empty()) {
     const std::vector<int> only{sample};
-    mixture.push_back(Component::FromSamples(label, only, data_, config_));
+    mixture.push_back(Component::FromSamples(label, only, data_, config_, prior_or_null()));
     RefreshWeights(label);
     report.component = 0;
   } else {
     report.component = NearestComponent(label, x);
-    mixture[report.component].AddSample(sample, data_, config_);
+    mixture[report.component].AddSample(sample, data_, config_, prior_or_null());
     if (!config_.switches.stale_weights) RefreshWeights(label);
   }
 
   // Steps 3 and 4.
   SplitOrMerge(label, report.component, report);
   RandomRecheck(report.component, report);
+  // The calibrated prediction's τ belongs to the model as it now is.
+  if (config_.prediction == Prediction::kCalibrated) LogLikelihood();
   return report;
+}
+
+void CollaborativeMixtureModels::RefreshPrior() {
+  const double previous = prior_.pseudo_samples;
+  prior_ = ComputeCovariancePrior(data_, data_.size(), config_);
+  if (previous > 0.0) prior_.pseudo_samples = previous;
+  const auto refit = [this](double kappa) {
+    prior_.pseudo_samples = kappa;
+    for (auto& mixture : components_) {
+      for (Component& c : mixture) c.Refit(data_, config_, &prior_);
+    }
+    sample_log_pseudo_count_.resize(0);
+    InvalidateLikelihood(0);
+    InvalidateLikelihood(1);
+  };
+  // κ from the data once the leave-one-out criterion is defined for both
+  // classes; ties keep the smaller κ (the grid's order).
+  const bool choose = config_.prior_pseudo_samples == 0.0 &&
+                      config_.acceptance == AcceptanceTest::kLeaveOneOut &&
+                      data_.count(0) >= 2 && data_.count(1) >= 2 &&
+                      !components_[0].empty() && !components_[1].empty();
+  if (!choose) return refit(prior_.pseudo_samples);
+  double best_kappa = kPseudoSampleGrid[0];
+  double best = kNegativeInfinity;
+  for (const double kappa : kPseudoSampleGrid) {
+    refit(kappa);
+    const double criterion = LogLikelihood();
+    if (criterion > best) best = criterion, best_kappa = kappa;
+  }
+  refit(best_kappa);
 }
 
 int CollaborativeMixtureModels::NearestComponent(int label,

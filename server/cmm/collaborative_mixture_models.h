@@ -5,12 +5,14 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "cmm/component.h"
 #include "cmm/config.h"
+#include "cmm/covariance_prior.h"
 #include "cmm/dataset.h"
 #include "cmm/random.h"
 #include "cmm/snapshot.h"
@@ -37,6 +39,7 @@ struct Evaluation {
   // log of the membership probability w_k* G_k*(x) / Γ_c(x) of that nearest
   // component k* within its class c (eq. comp_est); −∞ with no component.
   Eigen::VectorXd nearest_log_membership;
+  int dimension = 0;  // p, for the χ² confidence of exploration
 };
 
 class CollaborativeMixtureModels {
@@ -58,8 +61,16 @@ class CollaborativeMixtureModels {
   // Eq. (class_est) for every row of `points`.
   Eigen::VectorXd Predict(const Eigen::Ref<const Eigen::MatrixXd>& points) const;
 
-  // L = Σ_i log P(L = l_i | x_i) over the dataset (§3.8). Fills the lazy cache.
+  // The acceptance criterion of §3.8 for the current model: L = Σ_i log P(L =
+  // l_i | x_i) over the dataset, each sample predicted by the model as it is
+  // (kTrainingLikelihood) or without that sample (kLeaveOneOut), with the
+  // model's prediction rule. Fills the lazy cache.
   double LogLikelihood();
+
+  // τ of the calibrated prediction (§3.3); 1 under the pseudo-count.
+  double temperature() const { return temperature_; }
+  // The session's covariance prior (kPooledPrior; computed_from = 0 otherwise).
+  const CovariancePrior& prior() const { return prior_; }
 
   CmmSnapshot Snapshot() const;
 
@@ -86,6 +97,10 @@ class CollaborativeMixtureModels {
 
   // Whether `candidate`'s mean lies in the tolerance ellipsoid of `c` (§3.5).
   bool Intersects(const Component& c, const Component& candidate);
+  // Whether C = components_[label][index] overlaps the other class, for SPLIT:
+  // with kOtherMean an other-class candidate's mean lies in C's ellipsoid,
+  // with kOtherSamples an other-class sample does.
+  bool OverlapsOtherClass(int label, int index);
   // The other components of a class ordered by c's Mahalanobis distance to their
   // centres, nearest first (ties: lower index), excluding `skip` (or -1).
   std::vector<int> CandidatesByDistance(const Component& c, int label, int skip) const;
@@ -98,12 +113,42 @@ class CollaborativeMixtureModels {
   void RefreshWeights(int label);
   // Forgets the cached log Γ of class `label` and L, after the class changed.
   void InvalidateLikelihood(int label);
+  // Recomputes the covariance prior from the whole dataset and refits every
+  // component under it (kPooledPrior, at IsPriorCheckpoint sizes).
+  void RefreshPrior();
+  // The prior every component is estimated under; null without kPooledPrior.
+  const CovariancePrior* prior_or_null() const {
+    return config_.covariance == CovarianceEstimate::kPooledPrior ? &prior_ : nullptr;
+  }
+  // log of the prediction's pseudo-count density at each sample: 0 (the
+  // paper's "+1") or log B(x_i) (kCalibrated), extended lazily as the dataset
+  // grows.
+  const Eigen::VectorXd& SampleLogPseudoCounts();
+  // log of the weight of that density: 0 (the paper), or log(1/(n + 1))
+  // (kCalibrated): B is the density of one pseudo-sample from a component not
+  // seen yet, as in a Dirichlet-process mixture's predictive, so its share
+  // falls as 1/(n + 1) while far from all data it still takes over (P → ½).
+  double LogPseudoCountWeight() const {
+    return config_.prediction == Prediction::kCalibrated ? -std::log(data_.size() + 1.0) : 0.0;
+  }
+  // The criterion's log Γ of one class at every sample, for the class's
+  // components `members` (with their stored weights, or m_k/Σm): under
+  // kLeaveOneOut, a sample of the class is evaluated without itself.
+  Eigen::VectorXd CriterionClassLogDensity(const std::vector<Component*>& members,
+                                           bool stored_weights);
+  // log P(l_i | x_i) of every sample from both classes' criterion densities;
+  // fits τ when the prediction is calibrated and reports it in `tau`.
+  Eigen::VectorXd SampleLogProbabilities(const std::array<Eigen::VectorXd, 2>& log_gamma,
+                                         double& tau);
 
   CmmConfig config_;
   Dataset data_;
   std::array<std::vector<Component>, 2> components_;
   Random random_;
   ToleranceThresholdTable tolerance_;
+  CovariancePrior prior_;
+  double temperature_ = 1.0;
+  Eigen::VectorXd sample_log_pseudo_count_;  // empty = to be computed
   // log Γ_l(x_i) of each class, log P(l_i | x_i) of each sample and their sum
   // L, kept between candidate evaluations while the model does not change
   // (empty = to be computed).

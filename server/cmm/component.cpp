@@ -3,6 +3,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -29,7 +30,7 @@ Component::Component(int label, int dimension)
       scatter_(Eigen::MatrixXd::Zero(dimension, dimension)) {}
 
 Component Component::FromSamples(int label, std::span<const int> indices, const Dataset& data,
-                                 const CmmConfig& config) {
+                                 const CmmConfig& config, const CovariancePrior* prior) {
   assert(!indices.empty());
   Component c(label, data.dimension());
   c.indices_.assign(indices.begin(), indices.end());
@@ -38,24 +39,24 @@ Component Component::FromSamples(int label, std::span<const int> indices, const 
   c.mean_ = points.rowwise().mean();
   points.colwise() -= c.mean_;
   c.scatter_.noalias() = points * points.transpose();
-  c.Refresh(data, config);
+  c.Refresh(data, config, prior);
   return c;
 }
 
 Component Component::FromState(int label, std::vector<int> indices, Eigen::VectorXd mean,
                                Eigen::MatrixXd scatter, double weight, const Dataset& data,
-                               const CmmConfig& config) {
+                               const CmmConfig& config, const CovariancePrior* prior) {
   Component c(label, data.dimension());
   c.indices_ = std::move(indices);
   c.mean_ = std::move(mean);
   c.scatter_ = std::move(scatter);
   c.weight_ = weight;
-  c.Refresh(data, config);
+  c.Refresh(data, config, prior);
   return c;
 }
 
 Component Component::Union(const Component& a, const Component& b, const Dataset& data,
-                           const CmmConfig& config) {
+                           const CmmConfig& config, const CovariancePrior* prior) {
   assert(a.label_ == b.label_);
   Component c(a.label_, data.dimension());
   c.indices_ = a.indices_;
@@ -67,11 +68,12 @@ Component Component::Union(const Component& a, const Component& b, const Dataset
   c.mean_ = a.mean_ + delta * (nb / (na + nb));
   c.scatter_ = a.scatter_ + b.scatter_;
   c.scatter_.noalias() += (na * nb / (na + nb)) * delta * delta.transpose();
-  c.Refresh(data, config);
+  c.Refresh(data, config, prior);
   return c;
 }
 
-void Component::AddSample(int index, const Dataset& data, const CmmConfig& config) {
+void Component::AddSample(int index, const Dataset& data, const CmmConfig& config,
+                          const CovariancePrior* prior) {
   // Welford: with δ = x − μ_old, μ_new = μ_old + δ/(m+1) and
   // M2_new = M2_old + (m/(m+1)) δδᵀ.
   const double m = size();
@@ -80,7 +82,11 @@ void Component::AddSample(int index, const Dataset& data, const CmmConfig& confi
   scatter_.noalias() += (m / (m + 1.0)) * delta * delta.transpose();
   if (!nearest_.nearest.empty()) AddToNearestNeighbours(index, data);
   indices_.push_back(index);
-  Refresh(data, config);
+  Refresh(data, config, prior);
+}
+
+void Component::Refit(const Dataset& data, const CmmConfig& config, const CovariancePrior* prior) {
+  Refresh(data, config, prior);
 }
 
 void Component::AddToNearestNeighbours(int index, const Dataset& data) {
@@ -112,11 +118,13 @@ const NearestNeighbourGraph& Component::NearestNeighbours(const Dataset& data) {
   return nearest_;
 }
 
-void Component::Refresh(const Dataset& data, const CmmConfig& config) {
+void Component::Refresh(const Dataset& data, const CmmConfig& config,
+                        const CovariancePrior* prior) {
   const int p = data.dimension();
   const int m = size();
   const auto& switches = config.switches;
   log_density_column_.clear();
+  pseudo_samples_ = 0.0;
   centre_ = (switches.first_sample_mean && m <= kHitMaxSize)
                 ? Eigen::VectorXd(data.sample(indices_[0]))
                 : mean_;
@@ -151,16 +159,25 @@ void Component::Refresh(const Dataset& data, const CmmConfig& config) {
     return;
   }
 
-  if (m < 2) {
+  Eigen::MatrixXd sigma;
+  if (config.covariance == CovarianceEstimate::kPooledPrior) {
+    assert(prior != nullptr && prior->computed_from > 0);
+    // MAP under the inverse-Wishart prior of κ pseudo-samples of Ψ, plus the
+    // floor: positive definite for every m >= 1, one sample included.
+    pseudo_samples_ = prior->pseudo_samples;
+    sigma = (scatter_ + pseudo_samples_ * prior->scale) / (m + pseudo_samples_);
+    sigma.diagonal().array() += prior->floor;
+  } else if (m < 2) {
     shape_ = Shape::kUnit;
     whitening_.setIdentity(p, p);
     log_normaliser_ = -0.5 * p * kLogTwoPi;
     return;
+  } else {
+    // Σ̃ = Σ + λI with Σ the unbiased covariance; λ > 0 keeps Σ̃ positive
+    // definite even for m <= p or duplicate samples.
+    sigma = scatter_ / (m - 1.0);
+    sigma.diagonal().array() += config.regularization;
   }
-  // Σ̃ = Σ + λI with Σ the unbiased covariance; λ > 0 keeps Σ̃ positive definite
-  // even for m <= p or duplicate samples.
-  Eigen::MatrixXd sigma = scatter_ / (m - 1.0);
-  sigma.diagonal().array() += config.regularization;
   const Eigen::LLT<Eigen::MatrixXd> cholesky(sigma);
   const Eigen::MatrixXd lower = cholesky.matrixL();
   whitening_ = lower.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(p, p));
@@ -190,6 +207,23 @@ double Component::LogDensityFromSquaredDistance(double squared_distance) const {
                                                 : -std::numeric_limits<double>::infinity();
   }
   return log_normaliser_ - 0.5 * squared_distance;
+}
+
+double Component::LeaveOneOutLogDensity(double log_density) const {
+  assert(pseudo_samples_ > 0.0);
+  const double m = size();
+  if (m < 2.0) return -std::numeric_limits<double>::infinity();
+  const double p = static_cast<double>(mean_.size());
+  const double kappa = pseudo_samples_;
+  const double a = m / (m - 1.0);
+  const double q = SquaredDistanceFromLogDensity(log_density) / (m + kappa);
+  // aq < 1 holds in exact arithmetic (the sample's leverage within its own
+  // scatter is below (m − 1)/m, and κΨ only lowers q); keep rounding from
+  // crossing it.
+  const double remaining = std::max(1.0 - a * q, 1e-12);
+  const double squared = (m - 1.0 + kappa) * a * a * q / remaining;
+  const double log_det_change = p * std::log((m + kappa) / (m - 1.0 + kappa)) + std::log(remaining);
+  return log_normaliser_ - 0.5 * log_det_change - 0.5 * squared;
 }
 
 std::span<const double> Component::LogDensityColumn(const Dataset& data) {

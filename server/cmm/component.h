@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cmm/config.h"
+#include "cmm/covariance_prior.h"
 #include "cmm/dataset.h"
 #include "cmm/partition.h"
 
@@ -23,20 +24,26 @@ class Component {
     kHit,       // paper2018 "identity" component: a peak within ‖x − μ‖² < 1e-4, else 0
   };
 
+  // Every factory and update takes the session's covariance prior, which
+  // kPooledPrior needs (non-null) and the other estimates ignore (may be null).
+
   // A component holding the samples `indices` of `data` (in that order; the
   // first is its "first sample"), all of class `label`.
   static Component FromSamples(int label, std::span<const int> indices, const Dataset& data,
-                               const CmmConfig& config);
+                               const CmmConfig& config, const CovariancePrior* prior = nullptr);
   // A component restored from its running state, bit for bit.
   static Component FromState(int label, std::vector<int> indices, Eigen::VectorXd mean,
                              Eigen::MatrixXd scatter, double weight, const Dataset& data,
-                             const CmmConfig& config);
+                             const CmmConfig& config, const CovariancePrior* prior = nullptr);
   // The union of two components of one class (paper MERGE): samples of `a` then `b`.
   static Component Union(const Component& a, const Component& b, const Dataset& data,
-                         const CmmConfig& config);
+                         const CmmConfig& config, const CovariancePrior* prior = nullptr);
 
   // Appends sample `index` (Welford update of mean and scatter) and refactors.
-  void AddSample(int index, const Dataset& data, const CmmConfig& config);
+  void AddSample(int index, const Dataset& data, const CmmConfig& config,
+                 const CovariancePrior* prior = nullptr);
+  // Refactors under a new prior (the running state is unchanged).
+  void Refit(const Dataset& data, const CmmConfig& config, const CovariancePrior* prior);
 
   int label() const { return label_; }
   int size() const { return static_cast<int>(indices_.size()); }
@@ -59,6 +66,20 @@ class Component {
   void SquaredMahalanobis(const double* points, int count, int stride, double* out) const;
   // log G_k(x) from d²(x) (§3.2); −∞ where a kHit component gives 0.
   double LogDensityFromSquaredDistance(double squared_distance) const;
+  // d²(x) from log G_k(x): the inverse of LogDensityFromSquaredDistance.
+  double SquaredDistanceFromLogDensity(double log_density) const {
+    return 2.0 * (log_normaliser_ - log_density);
+  }
+
+  // Under kPooledPrior: log G(x_i) of one of the component's own samples under
+  // the estimate without it (§3.8, leave-one-out), from its log-density under
+  // the full estimate. With δ = x_i − μ, A = (m + κ)Σ and q = δᵀA⁻¹δ, taking
+  // x_i out is the rank-one downdate A − aδδᵀ, a = m/(m − 1), so by
+  // Sherman–Morrison d²₋ = (m − 1 + κ)a²q/(1 − aq) and
+  // log det Σ₋ = log det Σ + p log((m + κ)/(m − 1 + κ)) + log(1 − aq) (the
+  // floor φ is held at its full-data value). −∞ for a component of one sample:
+  // without it the component does not exist.
+  double LeaveOneOutLogDensity(double log_density) const;
 
   // The 1-NN graph of the component's samples (positions within indices()),
   // for SPLIT. Built from scratch on first use, then kept up to date by
@@ -79,7 +100,7 @@ class Component {
   // Updates the 1-NN graph for a sample about to be appended.
   void AddToNearestNeighbours(int index, const Dataset& data);
   // Recomputes centre, shape, whitening matrix and log normaliser.
-  void Refresh(const Dataset& data, const CmmConfig& config);
+  void Refresh(const Dataset& data, const CmmConfig& config, const CovariancePrior* prior);
 
   int label_;
   std::vector<int> indices_;
@@ -95,6 +116,8 @@ class Component {
   bool whitening_is_lower_triangular_ = true;
   // log G = log_normaliser_ − d²/2 (kGaussian, kUnit); the peak value (kHit).
   double log_normaliser_ = 0.0;
+  // κ of the prior the covariance was estimated under; 0 without one.
+  double pseudo_samples_ = 0.0;
 
   std::vector<double> log_density_column_;
   NearestNeighbourGraph nearest_;  // empty = not built yet

@@ -12,8 +12,58 @@
 namespace relmap::cmm {
 
 enum class Variant {
-  kCorrected,  // the paper's method with the defects of the 2018 code fixed
+  // The paper's method with the defects of the 2018 code fixed and the four
+  // generalisation fixes of docs/method.md §3.10 (prior, leave-one-out test,
+  // sample overlap, calibration): what users get.
+  kCorrected,
   kPaper2018,  // the 2018 code as it ran in the authors' robot experiments
+  // The first corrected variant (2018 defects fixed, fixed λ, the paper's
+  // training-likelihood test): kept for comparison and for sessions created with it.
+  kCorrectedV1,
+};
+
+// How a component's covariance is estimated (§3.2).
+enum class CovarianceEstimate {
+  // Σ + λI with the fixed λ `regularization` (corrected_v1). In 48-d a small λ
+  // leaves components of m <= p samples nearly singular and overfitted.
+  kRidge,
+  // The MAP estimate under an inverse-Wishart prior of κ pseudo-samples whose
+  // scale Ψ is the session's pooled within-class covariance, shrunk towards
+  // (tr Ψ/p)·I (OAS), plus a variance floor relative to the feature scale:
+  // Σ = (S + κΨ)/(m + κ) + φI. Well-posed for any m and along constant
+  // dimensions, and invariant to the units of the features.
+  kPooledPrior,
+};
+
+// The test that keeps or rejects a candidate split or merge (§3.8).
+enum class AcceptanceTest {
+  // The labelled training log-likelihood rises strictly (the paper). It almost
+  // always rises with more components, so it overfits.
+  kTrainingLikelihood,
+  // The leave-one-out log-likelihood of the calibrated prediction rises
+  // strictly: each sample is predicted by the model with that sample taken out
+  // of its component (a rank-one downdate), which estimates held-out quality.
+  kLeaveOneOut,
+};
+
+// When SPLIT deems a component to overlap the other class (§3.5).
+enum class SplitOverlap {
+  // An other-class component's mean lies inside C's tolerance ellipsoid (the
+  // paper). Never fires for interleaved classes such as two moons.
+  kOtherMean,
+  // An other-class sample lies inside C's tolerance ellipsoid.
+  kOtherSamples,
+};
+
+// How P(L=1|x) is formed from the class mixtures Γ0 and Γ1 (§3.3).
+enum class Prediction {
+  // (1 + Γ1)/(2 + Γ0 + Γ1): the "+1" is a density, so the prediction depends
+  // on the units of the features.
+  kPseudoCount,
+  // σ(τ·log((B + Γ1)/(B + Γ0))): the pseudo-count is B(x), a broad Gaussian
+  // over the whole dataset, so that P → 1/2 far from the data in any units,
+  // and τ ∈ [0, 1] tempers the log-odds to their leave-one-out calibration.
+  kCalibrated,
 };
 
 // Each flag, when true, reproduces one behaviour of the authors' code. The
@@ -43,19 +93,49 @@ struct CmmConfig {
   Variant variant = Variant::kCorrected;
   // Significance level of the tolerance hyperellipsoid (§3.5): 0.25 in the paper.
   double alpha = 0.25;
-  // λ of Σ̃ = Σ + λI (§3.2, `corrected` densities only).
+  // λ of Σ̃ = Σ + λI (§3.2, kRidge only).
   double regularization = 1e-6;
+  CovarianceEstimate covariance = CovarianceEstimate::kPooledPrior;
+  // κ of kPooledPrior; 0 means chosen from the data: at every prior checkpoint
+  // the κ of kPseudoSampleGrid that maximises the leave-one-out criterion of
+  // the model as it stands (how far a component should be pulled towards the
+  // pooled shape depends on how local the classes' structure is: XOR blobs in
+  // 48-d want κ ≈ 2, broad noisy classes far more).
+  double prior_pseudo_samples = 0.0;
+  // φ/(tr Ψ/p) of kPooledPrior: the variance every direction keeps, as a
+  // fraction of the mean variance of the features (1e-2: a standard deviation of
+  // a tenth of the typical one), so that a dimension constant in the training
+  // data does not make later samples infinitely unlikely.
+  double variance_floor = 1e-2;
+  AcceptanceTest acceptance = AcceptanceTest::kLeaveOneOut;
+  SplitOverlap split_overlap = SplitOverlap::kOtherSamples;
+  Prediction prediction = Prediction::kCalibrated;
   // Seed of the RNG that picks components for the random re-check (§3.4 step 4).
   std::uint64_t seed = 0;
   Paper2018Switches switches;
 
-  // The preset of a variant: all switches off for kCorrected; for kPaper2018 the
-  // switches of defects 1-5 on (the clock reseeding of defect 7 is not
-  // reproduced, so runs stay reproducible from their seed).
+  // The preset of a variant: the generalisation fixes for kCorrected; for
+  // kCorrectedV1 and kPaper2018 the paper's ridge, training-likelihood test,
+  // mean overlap and pseudo-count; kPaper2018 also turns on the switches of
+  // defects 1-5 (the clock reseeding of defect 7 is not reproduced, so runs
+  // stay reproducible from their seed).
   static CmmConfig ForVariant(Variant variant);
+
+  // κ before it can be chosen from the data (fewer than two samples in a
+  // class): the configured value, or p + 2, the fewest pseudo-samples for which
+  // an inverse-Wishart prior has a mean.
+  double PseudoSamples(int dimension) const {
+    return prior_pseudo_samples > 0.0 ? prior_pseudo_samples : dimension + 2.0;
+  }
 };
 
-// Checks ranges: alpha in [0, 1], regularization > 0 and finite.
+// The values of κ tried when prior_pseudo_samples = 0: powers of two from
+// half a sample (the data rule) to 256 (the prior rules up to m ≈ 256).
+inline constexpr double kPseudoSampleGrid[] = {0.5, 1, 2, 4, 8, 16, 32, 64, 128, 256};
+
+// Checks ranges: alpha in [0, 1], regularization > 0 and finite, κ >= 0 and
+// finite, variance_floor in (0, 1], the leave-one-out test only with the prior
+// (it downdates the prior's estimate), enums in range.
 Status Validate(const CmmConfig& config);
 
 std::string_view VariantName(Variant variant);

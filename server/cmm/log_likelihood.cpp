@@ -1,10 +1,13 @@
-// The labelled log-likelihood L of the dataset (§3.8), and the comparison that
+// The acceptance criterion L of §3.8 (docs/method.md), and the comparison that
 // accepts a split or merge. Every component keeps its column of per-sample
 // log-densities (the n×K cache), so a candidate model costs the new components'
 // columns, O(n·p²) each, plus O(n·K) sums; the model itself is never copied.
+// The leave-one-out criterion reads the same columns: a sample's density under
+// its own component without it is a closed-form downdate of its cached value.
 #include <algorithm>
 #include <span>
 
+#include "cmm/calibration.h"
 #include "cmm/collaborative_mixture_models.h"
 #include "cmm/log_math.h"
 #include "cmm/mixture_density.h"
@@ -12,35 +15,92 @@
 namespace relmap::cmm {
 namespace {
 
-// log Γ of a class with its stored weights.
-Eigen::VectorXd ClassLogDensity(std::vector<Component>& mixture, const Dataset& data) {
-  std::vector<WeightedColumn> columns;
-  columns.reserve(mixture.size());
-  for (Component& c : mixture) columns.push_back({c.LogDensityColumn(data), std::log(c.weight())});
-  return MixtureLogDensity(columns, data.size());
-}
-
-// log P(l_i | x_i) of every sample (eq. class_est), from both classes' log Γ.
-Eigen::VectorXd SampleLogProbabilities(const Dataset& data,
-                                       const std::array<Eigen::VectorXd, 2>& log_gamma) {
-  Eigen::VectorXd out(data.size());
-  for (int i = 0; i < data.size(); ++i) {
-    const int l = data.label(i);
-    out[i] = LogClassProbability(log_gamma[l][i], log_gamma[1 - l][i]);
-  }
-  return out;
+// log Σ_t e^{terms[t]}; −∞ when every term is.
+double LogSumExp(std::span<const double> terms) {
+  double high = kNegativeInfinity;
+  for (const double t : terms) high = std::max(high, t);
+  if (high == kNegativeInfinity) return high;
+  double sum = 0.0;
+  for (const double t : terms) sum += std::exp(t - high);
+  return high + std::log(sum);
 }
 
 }  // namespace
+
+const Eigen::VectorXd& CollaborativeMixtureModels::SampleLogPseudoCounts() {
+  const int n = data_.size();
+  const int done = static_cast<int>(sample_log_pseudo_count_.size());
+  if (done < n) {
+    sample_log_pseudo_count_.conservativeResize(n);
+    if (config_.prediction == Prediction::kCalibrated && prior_.computed_from > 0) {
+      prior_.BackgroundLogDensity(data_.data() + done, n - done, data_.stride(),
+                                  sample_log_pseudo_count_.data() + done);
+    } else {
+      sample_log_pseudo_count_.tail(n - done).setZero();
+    }
+  }
+  return sample_log_pseudo_count_;
+}
+
+Eigen::VectorXd CollaborativeMixtureModels::CriterionClassLogDensity(
+    const std::vector<Component*>& members, bool stored_weights) {
+  double total = 0.0;
+  for (const Component* c : members) total += c->size();
+  std::vector<WeightedColumn> columns;
+  columns.reserve(members.size());
+  for (Component* c : members) {
+    const double w = stored_weights ? c->weight() : c->size() / total;
+    columns.push_back({c->LogDensityColumn(data_), std::log(w)});
+  }
+  Eigen::VectorXd log_gamma = MixtureLogDensity(columns, data_.size());
+  if (config_.acceptance != AcceptanceTest::kLeaveOneOut) return log_gamma;
+
+  // Sample i of component k, taken out: weights (m_j − [j = k])/(M − 1), and
+  // component k's density without it.
+  const double log_rest = std::log(total - 1.0);  // −∞ for a class of one sample
+  std::vector<double> terms(members.size());
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    const Component& own = *members[k];
+    const double log_own_weight = std::log(own.size() - 1.0) - log_rest;
+    for (const int i : own.indices()) {
+      for (std::size_t t = 0; t < members.size(); ++t) {
+        terms[t] = t == k ? log_own_weight + own.LeaveOneOutLogDensity(columns[t].log_density[i])
+                          : std::log(members[t]->size()) - log_rest + columns[t].log_density[i];
+      }
+      log_gamma[i] = total > 1.0 ? LogSumExp(terms) : kNegativeInfinity;
+    }
+  }
+  return log_gamma;
+}
+
+Eigen::VectorXd CollaborativeMixtureModels::SampleLogProbabilities(
+    const std::array<Eigen::VectorXd, 2>& log_gamma, double& tau) {
+  const int n = data_.size();
+  const Eigen::VectorXd& log_pseudo = SampleLogPseudoCounts();
+  const double log_weight = LogPseudoCountWeight();
+  Eigen::VectorXd z(n);
+  for (int i = 0; i < n; ++i) {
+    const int l = data_.label(i);
+    z[i] = LogOdds(log_gamma[l][i], log_gamma[1 - l][i], log_weight + log_pseudo[i]);
+  }
+  tau = config_.prediction == Prediction::kCalibrated
+            ? FitTemperature({z.data(), static_cast<std::size_t>(n)})
+            : 1.0;
+  Eigen::VectorXd out(n);
+  for (int i = 0; i < n; ++i) out[i] = LogSigmoid(tau * z[i]);
+  return out;
+}
 
 double CollaborativeMixtureModels::LogLikelihood() {
   if (log_likelihood_) return *log_likelihood_;
   for (int label = 0; label < 2; ++label) {
     if (class_log_density_[label].size() != data_.size()) {
-      class_log_density_[label] = ClassLogDensity(components_[label], data_);
+      std::vector<Component*> members;
+      for (Component& c : components_[label]) members.push_back(&c);
+      class_log_density_[label] = CriterionClassLogDensity(members, true);
     }
   }
-  sample_log_probability_ = SampleLogProbabilities(data_, class_log_density_);
+  sample_log_probability_ = SampleLogProbabilities(class_log_density_, temperature_);
   log_likelihood_ = sample_log_probability_.sum();
   return *log_likelihood_;
 }
@@ -61,20 +121,14 @@ bool CollaborativeMixtureModels::ImprovesLikelihood(int label, const std::vector
     }
   }
   for (Component& c : added) members.push_back(&c);
-  double total = 0.0;
-  for (const Component* c : members) total += c->size();
-  std::vector<WeightedColumn> columns;
-  columns.reserve(members.size());
-  for (Component* c : members) {
-    columns.push_back({c->LogDensityColumn(data_), std::log(c->size() / total)});
-  }
   std::array<Eigen::VectorXd, 2> log_gamma = class_log_density_;
-  log_gamma[label] = MixtureLogDensity(columns, data_.size());
+  log_gamma[label] = CriterionClassLogDensity(members, false);
 
   // ΔL as a sum of per-sample differences rather than a difference of two sums:
   // samples the change does not reach contribute exactly 0, so rounding in the
   // sum over all n samples cannot fake a strict increase.
-  const Eigen::VectorXd candidate = SampleLogProbabilities(data_, log_gamma);
+  double tau = 1.0;
+  const Eigen::VectorXd candidate = SampleLogProbabilities(log_gamma, tau);
   return (candidate - sample_log_probability_).sum() > 0.0;
 }
 

@@ -19,6 +19,18 @@ inline double LogAddExp(double a, double b) {
   return high + std::log1p(std::exp(low - high));
 }
 
+// log σ(t) = −log(1 + e^−t), without overflow for either sign of t.
+inline double LogSigmoid(double t) {
+  return t < 0.0 ? t - std::log1p(std::exp(t)) : -std::log1p(std::exp(-t));
+}
+
+// The log-odds of class l against 1 − l: log(e^b + Γ_l) − log(e^b + Γ_{1−l}), with
+// log b the pseudo-count (0 for the paper's "+1", log B(x) for the calibrated
+// prediction).
+inline double LogOdds(double log_gamma_own, double log_gamma_other, double log_pseudo_count) {
+  return LogAddExp(log_pseudo_count, log_gamma_own) - LogAddExp(log_pseudo_count, log_gamma_other);
+}
+
 // Eq. (class_est) in the log domain: log P(L = l | x) from log Γ_l and log Γ_{1−l}.
 // P = (1 + Γ_l)/(2 + Γ_0 + Γ_1) = 1/(1 + e^r) with r = log(1 + Γ_{1−l}) − log(1 + Γ_l),
 // so log P = −softplus(r). Unlike log(1 + Γ_l) − log(2 + Γ_0 + Γ_1), a difference of

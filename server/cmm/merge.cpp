@@ -26,7 +26,7 @@ bool CollaborativeMixtureModels::TryMerge(int label, int index, UpdateReport& re
   for (int k : candidates) {
     if (!Intersects(mixture[index], mixture[k])) continue;
     std::vector<Component> merged;
-    merged.push_back(Component::Union(mixture[index], mixture[k], data_, config_));
+    merged.push_back(Component::Union(mixture[index], mixture[k], data_, config_, prior_or_null()));
     if (!ImprovesLikelihood(label, {index, k}, merged, report)) continue;
     mixture[index] = std::move(merged[0]);
     mixture.erase(mixture.begin() + k);

@@ -13,6 +13,7 @@ Evaluation CollaborativeMixtureModels::Evaluate(
   const int n = static_cast<int>(points.rows());
   const int stride = static_cast<int>(points.outerStride());
   Evaluation result;
+  result.dimension = dimension();
   result.nearest_squared_mahalanobis =
       Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
   Eigen::VectorXd nearest_log_weighted = Eigen::VectorXd::Constant(n, kNegativeInfinity);
@@ -41,11 +42,19 @@ Evaluation CollaborativeMixtureModels::Evaluate(
     log_gamma[label] = MixtureLogDensity(columns, n);
   }
 
+  // The pseudo-count: the paper's 1, or the background density B(x).
+  Eigen::VectorXd log_pseudo = Eigen::VectorXd::Zero(n);
+  if (config_.prediction == Prediction::kCalibrated && prior_.computed_from > 0) {
+    prior_.BackgroundLogDensity(points.data(), n, stride, log_pseudo.data());
+    log_pseudo.array() += LogPseudoCountWeight();
+  }
   result.relevance.resize(n);
   result.nearest_log_membership.resize(n);
   for (int i = 0; i < n; ++i) {
-    // Eq. (class_est): P(L=1|x) = (1 + Γ1) / (2 + Γ0 + Γ1); 0.5 with no component.
-    result.relevance[i] = std::exp(LogClassProbability(log_gamma[1][i], log_gamma[0][i]));
+    // Eq. (class_est): P(L=1|x) = (1 + Γ1) / (2 + Γ0 + Γ1), or calibrated
+    // σ(τ log((B + Γ1)/(B + Γ0))); 0.5 with no component.
+    result.relevance[i] =
+        std::exp(LogSigmoid(temperature_ * LogOdds(log_gamma[1][i], log_gamma[0][i], log_pseudo[i])));
     const double class_log_gamma = log_gamma[nearest_class[i]][i];
     result.nearest_log_membership[i] = class_log_gamma == kNegativeInfinity
                                            ? kNegativeInfinity

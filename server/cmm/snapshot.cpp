@@ -62,6 +62,7 @@ CmmSnapshot CollaborativeMixtureModels::Snapshot() const {
   s.random_state = random_.state();
   s.splits = splits_;
   s.merges = merges_;
+  s.prior_pseudo_samples = prior_.pseudo_samples;
   return s;
 }
 
@@ -86,6 +87,15 @@ StatusOr<CollaborativeMixtureModels> CollaborativeMixtureModels::Restore(const C
     model.data_.Append(x, s.labels[i]);
   }
 
+  // The prior is a function of the dataset and its size: recomputed, not stored.
+  if (model.config_.covariance == CovarianceEstimate::kPooledPrior && n > 0) {
+    model.prior_ = ComputeCovariancePrior(model.data_, PriorSampleCount(static_cast<int>(n)),
+                                          model.config_);
+    if (!(s.prior_pseudo_samples > 0.0) || !std::isfinite(s.prior_pseudo_samples)) {
+      return DataLossError("snapshot has no valid prior pseudo-sample count");
+    }
+    model.prior_.pseudo_samples = s.prior_pseudo_samples;
+  }
   std::vector<int> owner(n, -1);
   for (int label = 0; label < 2; ++label) {
     for (const ComponentSnapshot& c : s.components[label]) {
@@ -93,7 +103,7 @@ StatusOr<CollaborativeMixtureModels> CollaborativeMixtureModels::Restore(const C
       model.components_[label].push_back(Component::FromState(
           label, c.samples, Eigen::Map<const Eigen::VectorXd>(c.mean.data(), p),
           Eigen::Map<const Eigen::MatrixXd>(c.scatter.data(), p, p), c.weight, model.data_,
-          model.config_));
+          model.config_, model.prior_or_null()));
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -102,6 +112,8 @@ StatusOr<CollaborativeMixtureModels> CollaborativeMixtureModels::Restore(const C
   model.random_ = Random::FromState(s.random_state);
   model.splits_ = s.splits;
   model.merges_ = s.merges;
+  // τ too is a function of the model: the same computation as at the end of Add.
+  if (model.config_.prediction == Prediction::kCalibrated && n > 0) model.LogLikelihood();
   return model;
 }
 

@@ -28,6 +28,10 @@ struct CmmSnapshot {
   Random::State random_state{};
   std::uint64_t splits = 0;
   std::uint64_t merges = 0;
+  // κ of the covariance prior as last chosen (kPooledPrior; 0 otherwise). The
+  // prior's scale is recomputed from the samples, κ cannot be: it was chosen
+  // against the model as it stood at the checkpoint.
+  double prior_pseudo_samples = 0.0;
 };
 
 }  // namespace relmap::cmm

@@ -9,23 +9,9 @@
 namespace relmap::cmm {
 
 bool CollaborativeMixtureModels::TrySplit(int label, int index, UpdateReport& report) {
+  if (components_[label][index].size() <= dimension()) return false;  // no tolerance ellipsoid yet
+  if (!OverlapsOtherClass(label, index)) return false;
   Component& c = components_[label][index];
-  if (c.size() <= dimension()) return false;  // no tolerance ellipsoid yet
-
-  // Candidates: every other-class component (paper Alg. 2), or only the one
-  // nearest to C in C's metric (switch nearest_candidate_only).
-  const int other = 1 - label;
-  std::vector<int> candidates = CandidatesByDistance(c, other, -1);
-  if (config_.switches.nearest_candidate_only && candidates.size() > 1)
-    candidates.erase(candidates.begin() + 1, candidates.end());
-  bool overlaps = false;
-  for (int k : candidates) {
-    if (Intersects(c, components_[other][k])) {
-      overlaps = true;
-      break;
-    }
-  }
-  if (!overlaps) return false;
 
   Eigen::MatrixXd points(dimension(), c.size());
   for (int j = 0; j < c.size(); ++j) points.col(j) = data_.sample(c.indices()[j]);
@@ -48,7 +34,7 @@ bool CollaborativeMixtureModels::TrySplit(int label, int index, UpdateReport& re
   }
   std::vector<Component> halves;
   for (int h = 0; h < 2; ++h) {
-    halves.push_back(Component::FromSamples(label, samples[h], data_, config_));
+    halves.push_back(Component::FromSamples(label, samples[h], data_, config_, prior_or_null()));
     halves.back().AdoptNearestNeighbours(std::move(halves_graph[h]));
   }
   if (!ImprovesLikelihood(label, {index}, halves, report)) return false;

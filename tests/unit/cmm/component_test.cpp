@@ -44,7 +44,7 @@ TEST(Component, LogDensityMatchesTheHandComputedValueIn2d) {
   // At x = (1, 2): d² = 1/(2/3) + 4/(8/3) = 3, log det(2πΣ) = 2 log 2π + log(16/9),
   // log G = −1.5 − log 2π − ½ log(16/9) = −3.625559.
   const Dataset data = MakeDataset({{-1, 0}, {1, 0}, {0, -2}, {0, 2}});
-  CmmConfig config;
+  CmmConfig config = CmmConfig::ForVariant(Variant::kCorrectedV1);
   config.regularization = 1e-12;
   const Component c = Component::FromSamples(0, AllIndices(data), data, config);
   const Eigen::Vector2d x(1, 2);
@@ -61,7 +61,7 @@ TEST(Component, LogDensityMatchesTheClosedFormIn48d) {
     for (int k = 0; k < 48; ++k) x[k] = 0.1 * random.UniformUnit() + 0.01 * k;
     data.Append(x, 1);
   }
-  const CmmConfig config;  // λ = 1e-6
+  const CmmConfig config = CmmConfig::ForVariant(Variant::kCorrectedV1);  // λ = 1e-6
   const Component c = Component::FromSamples(1, AllIndices(data), data, config);
   Eigen::MatrixXd sigma = c.scatter() / 119.0;
   sigma.diagonal().array() += 1e-6;
@@ -77,7 +77,7 @@ TEST(Component, LogDensityMatchesTheClosedFormIn48d) {
 TEST(Component, SingleSampleUsesTheUnitCovariance) {
   // G(s, I): log G(x) = −‖x − s‖²/2 − (p/2) log 2π.
   const Dataset data = MakeDataset({{1, 2, 3}});
-  const Component c = Component::FromSamples(0, {{0}}, data, CmmConfig{});
+  const Component c = Component::FromSamples(0, {{0}}, data, CmmConfig::ForVariant(Variant::kCorrectedV1));
   const Eigen::Vector3d x(1, 2, 5);
   EXPECT_EQ(c.shape(), Component::Shape::kUnit);
   EXPECT_DOUBLE_EQ(c.SquaredMahalanobis(x), 4.0);
@@ -92,7 +92,7 @@ TEST(Component, OnlineUpdatesMatchBatchStatistics) {
     for (int k = 0; k < 5; ++k) x[k] = random.UniformUnit() * (k + 1);
     data.Append(x, 0);
   }
-  const CmmConfig config;
+  const CmmConfig config = CmmConfig::ForVariant(Variant::kCorrectedV1);
   Component online = Component::FromSamples(0, {{0}}, data, config);
   for (int i = 1; i < 40; ++i) online.AddSample(i, data, config);
   const Component batch = Component::FromSamples(0, AllIndices(data), data, config);
@@ -103,7 +103,7 @@ TEST(Component, OnlineUpdatesMatchBatchStatistics) {
 
 TEST(Component, UnionMatchesBatchStatistics) {
   const Dataset data = MakeDataset({{0, 0}, {1, 0}, {0, 1}, {5, 5}, {6, 5}, {5, 7}});
-  const CmmConfig config;
+  const CmmConfig config = CmmConfig::ForVariant(Variant::kCorrectedV1);
   const Component a = Component::FromSamples(0, {{0, 1, 2}}, data, config);
   const Component b = Component::FromSamples(0, {{3, 4, 5}}, data, config);
   const Component u = Component::Union(a, b, data, config);
@@ -121,7 +121,7 @@ TEST(Component, BatchDistancesEqualSinglePointDistancesBitForBit) {
     for (int k = 0; k < 48; ++k) x[k] = random.UniformUnit();
     data.Append(x, 0);
   }
-  const Component c = Component::FromSamples(0, AllIndices(data), data, CmmConfig{});
+  const Component c = Component::FromSamples(0, AllIndices(data), data, CmmConfig::ForVariant(Variant::kCorrectedV1));
   std::vector<double> batch(70);
   c.SquaredMahalanobis(data.data(), 70, data.stride(), batch.data());
   for (int i = 0; i < 70; ++i) EXPECT_EQ(batch[i], c.SquaredMahalanobis(data.sample(i)));
@@ -154,7 +154,7 @@ TEST(Component, PaperDensityUsesPseudoInverseAndPseudoDeterminantWithoutRoot) {
 
 TEST(Component, LogDensityColumnFollowsTheDatasetAndResetsOnChange) {
   Dataset data = MakeDataset({{0, 0}, {1, 0}, {0, 1}});
-  const CmmConfig config;
+  const CmmConfig config = CmmConfig::ForVariant(Variant::kCorrectedV1);
   Component c = Component::FromSamples(0, {{0, 1, 2}}, data, config);
   EXPECT_EQ(c.LogDensityColumn(data).size(), 3u);
   data.Append(Eigen::Vector2d(3, 3), 0);

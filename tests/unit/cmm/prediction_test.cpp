@@ -1,4 +1,5 @@
-// Prediction, eq. (class_est): P(L=1|x) = (1 + Γ1(x)) / (2 + Γ0(x) + Γ1(x)).
+// The paper's prediction, eq. (class_est): P(L=1|x) = (1 + Γ1(x)) / (2 + Γ0(x) + Γ1(x))
+// (Prediction::kPseudoCount, as corrected_v1 and paper2018 predict).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,8 +10,10 @@
 namespace relmap::cmm {
 namespace {
 
+const CmmConfig kPseudoCount = CmmConfig::ForVariant(Variant::kCorrectedV1);
+
 CollaborativeMixtureModels Empty2d() {
-  return CollaborativeMixtureModels::Create(CmmConfig{}, 2).value();
+  return CollaborativeMixtureModels::Create(kPseudoCount, 2).value();
 }
 
 TEST(Prediction, IsOneHalfWithoutAnyComponent) {
@@ -43,6 +46,7 @@ TEST(Prediction, SumsWeightedComponentsOfAClass) {
   // At (1,0): each G = e^{−0.5}/(2π) = 0.0965324, Γ1 = 0.0965324,
   // P = 1.0965324 / 2.0965324 = 0.523021.
   CmmSnapshot snapshot;
+  snapshot.config = kPseudoCount;
   snapshot.dimension = 2;
   snapshot.features = {0, 0, 2, 0};
   snapshot.labels = {1, 1};
@@ -65,7 +69,7 @@ TEST(Prediction, DoesNotUnderflowIn48d) {
   // Tight 48-d components have densities far beyond the range of a double
   // (log-normaliser ≈ +300); the log domain keeps the prediction exact.
   const auto train = testing::Problem(datasets::Problem::kTwoMoons, 400, 48, 4);
-  const auto model = testing::Train(train, CmmConfig{});
+  const auto model = testing::Train(train, kPseudoCount);
   const Eigen::VectorXd p = model.Predict(train.features);
   ASSERT_TRUE(p.allFinite());
   int right = 0;
@@ -75,7 +79,7 @@ TEST(Prediction, DoesNotUnderflowIn48d) {
 
 TEST(Prediction, WeightsAreSizeProportionalAndSumToOne) {
   const auto train = testing::Problem(datasets::Problem::kXorBlobs, 500, 2, 5);
-  const auto model = testing::Train(train, CmmConfig{});
+  const auto model = testing::Train(train, kPseudoCount);
   for (int label = 0; label < 2; ++label) {
     double total = 0.0;
     for (const Component& c : model.components(label)) {
@@ -88,7 +92,7 @@ TEST(Prediction, WeightsAreSizeProportionalAndSumToOne) {
 
 TEST(LogLikelihood, IsTheSumOfLogPredictionsOfTheLabels) {
   const auto train = testing::Problem(datasets::Problem::kTwoMoons, 300, 2, 6);
-  auto model = testing::Train(train, CmmConfig{});
+  auto model = testing::Train(train, kPseudoCount);
   const Eigen::VectorXd p = model.Predict(train.features);
   double expected = 0.0;
   for (int i = 0; i < p.size(); ++i) expected += std::log(train.labels[i] == 1 ? p[i] : 1.0 - p[i]);

@@ -35,8 +35,9 @@ void AppendBlob(CmmSnapshot& s, double x, double y, int count, std::int8_t label
   }
 }
 
+// corrected_v1 with one switch of the 2018 code turned on.
 CmmConfig With(void (*turn_on)(Paper2018Switches&)) {
-  CmmConfig config;
+  CmmConfig config = CmmConfig::ForVariant(Variant::kCorrectedV1);
   turn_on(config.switches);
   return config;
 }
@@ -61,7 +62,7 @@ TEST(Paper2018Switches, PseudoDensityMakesSmallComponentsHitsOfDensityOne) {
   auto paper = CollaborativeMixtureModels::Create(
                    With([](Paper2018Switches& s) { s.pseudo_density = true; }), 2)
                    .value();
-  auto corrected = CollaborativeMixtureModels::Create(CmmConfig{}, 2).value();
+  auto corrected = CollaborativeMixtureModels::Create(CmmConfig::ForVariant(Variant::kCorrectedV1), 2).value();
   for (double x : {0.0, 2.0, 4.0}) {
     ASSERT_TRUE(paper.Add(Eigen::Vector2d(x, 0), 1).ok());
     ASSERT_TRUE(corrected.Add(Eigen::Vector2d(x, 0), 1).ok());
@@ -76,7 +77,7 @@ TEST(Paper2018Switches, FirstSampleMeanCentresSmallComponentsOnTheirFirstSample)
   auto paper = CollaborativeMixtureModels::Create(
                    With([](Paper2018Switches& s) { s.first_sample_mean = true; }), 2)
                    .value();
-  auto corrected = CollaborativeMixtureModels::Create(CmmConfig{}, 2).value();
+  auto corrected = CollaborativeMixtureModels::Create(CmmConfig::ForVariant(Variant::kCorrectedV1), 2).value();
   for (double x : {0.0, 2.0, 4.0}) {
     ASSERT_TRUE(paper.Add(Eigen::Vector2d(x, 0), 1).ok());
     ASSERT_TRUE(corrected.Add(Eigen::Vector2d(x, 0), 1).ok());
@@ -90,6 +91,7 @@ TEST(Paper2018Switches, StaleWeightsAreNotRefreshedAfterAnAppend) {
   // Two one-sample moveable components of weight ½; a third sample joins the
   // first: corrected weights become 2/3 and 1/3, stale ones stay ½ and ½.
   CmmSnapshot snapshot;
+  snapshot.config = CmmConfig::ForVariant(Variant::kCorrectedV1);
   snapshot.dimension = 2;
   snapshot.features = {0, 0, 10, 0};
   snapshot.labels = {1, 1};
@@ -110,6 +112,7 @@ TEST(Paper2018Switches, NearestCandidateOnlyNeverMergesComponentsUnderFiveSample
   // it. A new sample joins A, whose MERGE finds B inside its tolerance
   // ellipsoid. The likelihood check is off so that only the candidate rule acts.
   CmmSnapshot snapshot;
+  snapshot.config = CmmConfig::ForVariant(Variant::kCorrectedV1);
   snapshot.dimension = 2;
   std::vector<int> a;
   std::vector<int> b;
@@ -135,6 +138,7 @@ TEST(Paper2018Switches, TruncatedRecheckStopsAtAClassWithOneComponent) {
   // triggers the re-check: corrected visits class 1 and merges its blobs; the
   // 2018 code stops at class 0. (Likelihood check off: only the re-check acts.)
   CmmSnapshot snapshot;
+  snapshot.config = CmmConfig::ForVariant(Variant::kCorrectedV1);
   snapshot.dimension = 2;
   std::vector<int> lone;
   std::vector<int> a;
@@ -158,7 +162,7 @@ TEST(Paper2018Switches, TruncatedRecheckStopsAtAClassWithOneComponent) {
 
 TEST(Paper2018Switches, SkipLikelihoodCheckAcceptsWithoutEvaluatingCandidates) {
   const auto data = testing::Problem(datasets::Problem::kXorBlobs, 400, 2, 31);
-  auto checked = CollaborativeMixtureModels::Create(CmmConfig{}, 2).value();
+  auto checked = CollaborativeMixtureModels::Create(CmmConfig::ForVariant(Variant::kCorrectedV1), 2).value();
   auto unchecked = CollaborativeMixtureModels::Create(
                        With([](Paper2018Switches& s) { s.skip_likelihood_check = true; }), 2)
                        .value();
