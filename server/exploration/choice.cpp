@@ -2,6 +2,7 @@
 #include "exploration/choice.h"
 
 #include <algorithm>
+#include <boost/math/special_functions/gamma.hpp>
 #include <cassert>
 #include <cmath>
 
@@ -11,6 +12,13 @@ namespace relmap::exploration {
 
 Eigen::VectorXd Confidence(const cmm::Evaluation& evaluation, ConfidenceMode mode) {
   if (mode == ConfidenceMode::kMembership) return evaluation.nearest_log_membership.array().exp();
+  if (mode == ConfidenceMode::kChiSquare) {
+    // Q(p/2, d²/2), the χ²_p survival function; 0 with no component (d² = +∞).
+    const double half_p = 0.5 * evaluation.dimension;
+    return evaluation.nearest_squared_mahalanobis.unaryExpr([half_p](double d2) {
+      return std::isfinite(d2) ? boost::math::gamma_q(half_p, 0.5 * std::max(d2, 0.0)) : 0.0;
+    });
+  }
   // c = exp(−½ d²) of the nearest component: 1 at its mean, 0 far from all data
   // (and with no component at all, d² = +∞).
   return (-0.5 * evaluation.nearest_squared_mahalanobis.array()).exp();

@@ -8,8 +8,14 @@ namespace relmap::exploration {
 
 enum class ConfidenceMode {
   // c(x) = exp(−½ d²_k*(x)) of the nearest component of either class: what the
-  // authors' code computed, and relmap's default.
+  // authors' code computed (corrected_v1, paper2018). In p dimensions a sample of
+  // the component itself has d² ≈ p, so in 48-d c ≈ e^−24 for every point and
+  // 1 − c no longer tells covered regions from new ones.
   kNearestPeak,
+  // c(x) = P(χ²_p > d²_k*(x)): the fraction of the nearest component's own
+  // mass farther out than x, the same as exp(−½ d²) in 2-d and meaning the
+  // same in every dimension (relmap's default, `corrected`).
+  kChiSquare,
   // The paper's literal wording: the membership probability (eq. comp_est) of
   // the nearest component within its class. Frozen at 1 while a class has one
   // component; kept for study only.
@@ -29,6 +35,8 @@ struct ExplorationConfig {
   static ExplorationConfig ForVariant(cmm::Variant variant) {
     ExplorationConfig config;
     config.paper_choice_quirks = variant == cmm::Variant::kPaper2018;
+    config.confidence = variant == cmm::Variant::kCorrected ? ConfidenceMode::kChiSquare
+                                                            : ConfidenceMode::kNearestPeak;
     return config;
   }
 };
