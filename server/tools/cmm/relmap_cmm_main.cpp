@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cmm/collaborative_mixture_models.h"
+#include "cmm/config_spec.h"
 #include "cmm/log_math.h"
 #include "cmm/random.h"
 #include "datasets/csv.h"
@@ -24,10 +25,14 @@ namespace relmap::tools {
 namespace {
 
 constexpr std::string_view kUsage =
-    "usage: relmap-cmm --train train.csv [--test test.csv] [--variant corrected|paper2018]\n"
+    "usage: relmap-cmm --train train.csv [--test test.csv]\n"
+    "                  [--variant corrected|corrected_v1|paper2018 | --config SPEC]\n"
     "                  [--alpha 0.25] [--regularization 1e-6] [--seed N] [--active]\n"
     "                  [--budget N] [--curve N [--curve-csv curve.csv]]\n"
     "  CSV rows: label,f1,...,fp (label 0 or 1; a header line is allowed).\n"
+    "  --config   a variant with options changed, e.g. corrected:acceptance=training\n"
+    "             (keys: alpha, regularization, pseudo_samples, variance_floor,\n"
+    "             covariance, acceptance, overlap, prediction; see docs/method.md)\n"
     "  --active   the choice map picks each next sample from the training pool\n"
     "  --budget   with --active: stop after N samples (default: the whole pool)\n"
     "  --curve    score the test set every N samples (a learning curve)\n"
@@ -72,7 +77,7 @@ Options ParseArguments(int argc, char** argv) {
       options.train = value();
     else if (flag == "--test")
       options.test = value();
-    else if (flag == "--variant")
+    else if (flag == "--variant" || flag == "--config")
       variant = value();
     else if (flag == "--alpha")
       alpha = ParseNumber(flag, value());
@@ -96,9 +101,9 @@ Options ParseArguments(int argc, char** argv) {
     }
   }
   if (options.train.empty()) Fail(fmt::format("--train is required\n{}", kUsage));
-  const auto parsed = cmm::ParseVariant(variant);
+  const auto parsed = cmm::ParseConfiguration(variant);
   if (!parsed.ok()) Fail(parsed.status().message());
-  options.config = cmm::CmmConfig::ForVariant(*parsed);
+  options.config = *parsed;
   if (alpha) options.config.alpha = *alpha;
   if (regularization) options.config.regularization = *regularization;
   if (seed) {
@@ -211,11 +216,13 @@ class Run {
     }
     const LatencyRecorder& predict = test_ ? PredictLatencyOn(*test_) : PredictLatencyOn(train_);
     return fmt::format(
-        R"({{"variant":"{}","alpha":{},"regularization":{},"seed":{},"mode":"{}","dimension":{},)"
+        R"({{"variant":"{}","configuration":"{}","alpha":{},"regularization":{},"temperature":{},)"
+        R"("seed":{},"mode":"{}","dimension":{},)"
         R"("samples":[{},{}],"components":[{},{}],"splits":{},"merges":{},"log_likelihood":{},)"
         R"("test":{},"latency_us":{{"update":{},"predict":{},"choice":{}}},"curve":[{}]}})",
-        cmm::VariantName(options_.config.variant), options_.config.alpha,
-        options_.config.regularization, options_.config.seed, options_.active ? "active" : "online",
+        cmm::VariantName(options_.config.variant), cmm::ConfigurationName(options_.config),
+        options_.config.alpha, options_.config.regularization, model_.temperature(),
+        options_.config.seed, options_.active ? "active" : "online",
         model_.dimension(), model_.sample_count(0), model_.sample_count(1),
         model_.component_count(0), model_.component_count(1), model_.splits(), model_.merges(),
         Number(model_.LogLikelihood()), test, LatencyJson(update_.Summarise()),
