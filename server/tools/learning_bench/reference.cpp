@@ -1,0 +1,39 @@
+// Through std::system and the shell: the script is an optional extra, and a
+// failure of it is reported in the table, never fatal.
+#include "learning_bench/reference.h"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "learning_bench/table_csv.h"
+
+namespace relmap::learning_bench {
+namespace {
+
+// A single-quoted shell word: ' becomes '\''.
+std::string ShellQuote(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+ReferenceOutcome RunReference(const std::string& script, const std::string& streams_dir,
+                              const std::string& out_csv, std::uint64_t seed) {
+  if (!std::filesystem::exists(script)) return {{}, "not run: no script " + script};
+  if (std::system("python3 -c 'import sklearn' >/dev/null 2>&1") != 0) {
+    return {{}, "not run: python3 with sklearn not found"};
+  }
+  const std::string command =
+      fmt::format("python3 {} --streams {} --out {} --seed {} 1>&2", ShellQuote(script),
+                  ShellQuote(streams_dir), ShellQuote(out_csv), seed);
+  if (std::system(command.c_str()) != 0) return {{}, "not run: the script failed"};
+  auto rows = ReadTableCsv(out_csv);
+  if (!rows.ok()) return {{}, "not run: " + rows.status().message()};
+  return {std::move(rows).value(), "run"};
+}
+
+}  // namespace relmap::learning_bench
