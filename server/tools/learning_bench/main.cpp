@@ -3,6 +3,7 @@
 // writes it as CSV and JSON with learning-curve PNGs (--out).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -213,7 +214,12 @@ int Main(int argc, char** argv) {
   const std::vector<std::string> learners = UsableLearners(o.learners);
   const std::vector<std::vector<Stream>> streams = LoadStreams(o);
   const std::filesystem::path out(o.out);
-  if (!o.out.empty()) std::filesystem::create_directories(out / "curves");
+  if (!o.out.empty()) {
+    // The reference reads every stream file there: none may be left from an
+    // earlier run with other streams.
+    std::filesystem::remove_all(out / "streams");
+    std::filesystem::create_directories(out / "curves");
+  }
 
   std::vector<TableRow> rows;
   std::vector<CurveSummary> curves;
@@ -259,6 +265,13 @@ int Main(int argc, char** argv) {
     }
   }
   rows.insert(rows.end(), reference.rows.begin(), reference.rows.end());
+  // Each stream's reference rows right below its online ones.
+  const auto stream_index = [&](const TableRow& r) {
+    return std::find(stream_names.begin(), stream_names.end(), r.stream) - stream_names.begin();
+  };
+  std::stable_sort(rows.begin(), rows.end(), [&](const TableRow& a, const TableRow& b) {
+    return stream_index(a) < stream_index(b);
+  });
   const std::vector<StreamBest> best = BestPerStream(rows, stream_names, reference_names);
 
   const double wall = SecondsSince(start);

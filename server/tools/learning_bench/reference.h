@@ -18,8 +18,8 @@ struct ReferenceOutcome {
 };
 
 // Runs `script` on DIR/*.train.csv and DIR/*.test.csv in `streams_dir`, writing
-// `out_csv`. The script's own output goes to standard error, so that the
-// benchmark's standard output stays one table.
+// `out_csv`, with the first python3 that has sklearn. The script's own output goes to standard
+// error, so that the benchmark's standard output stays one table.
 ReferenceOutcome RunReference(const std::string& script, const std::string& streams_dir,
                               const std::string& out_csv, std::uint64_t seed);
 
