@@ -1,7 +1,9 @@
 // precision = tp/(tp+fp), recall = tp/(tp+fn), accuracy = ½(tp/G_obj + tn/G_back).
 #include "exploration/metrics.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 
 namespace relmap::exploration {
 namespace {
@@ -58,6 +60,43 @@ Scores ThresholdedSoftScores(const Eigen::VectorXd& relevance, const std::vector
     }
   }
   return FromCounts(c);
+}
+
+std::optional<double> BalancedAccuracy(const Eigen::VectorXd& relevance,
+                                       const std::vector<bool>& moveable, double threshold) {
+  assert(static_cast<std::size_t>(relevance.size()) == moveable.size());
+  double right[2] = {0, 0}, total[2] = {0, 0};  // indexed by the true class
+  for (Eigen::Index i = 0; i < relevance.size(); ++i) {
+    const int truth = moveable[static_cast<std::size_t>(i)] ? 1 : 0;
+    total[truth] += 1.0;
+    right[truth] += (relevance[i] >= threshold) == (truth == 1) ? 1.0 : 0.0;
+  }
+  const auto recall_0 = Ratio(right[0], total[0]);
+  const auto recall_1 = Ratio(right[1], total[1]);
+  if (!recall_0 || !recall_1) return std::nullopt;
+  return 0.5 * (*recall_0 + *recall_1);
+}
+
+std::optional<double> LogLoss(const Eigen::VectorXd& relevance, const std::vector<bool>& moveable) {
+  assert(static_cast<std::size_t>(relevance.size()) == moveable.size());
+  constexpr double kClip = 1e-15;
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < relevance.size(); ++i) {
+    const double p1 = std::clamp(relevance[i], kClip, 1.0 - kClip);
+    sum -= std::log(moveable[static_cast<std::size_t>(i)] ? p1 : 1.0 - p1);
+  }
+  return Ratio(sum, static_cast<double>(relevance.size()));
+}
+
+std::optional<double> BrierScore(const Eigen::VectorXd& relevance,
+                                 const std::vector<bool>& moveable) {
+  assert(static_cast<std::size_t>(relevance.size()) == moveable.size());
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < relevance.size(); ++i) {
+    const double error = relevance[i] - (moveable[static_cast<std::size_t>(i)] ? 1.0 : 0.0);
+    sum += error * error;
+  }
+  return Ratio(sum, static_cast<double>(relevance.size()));
 }
 
 }  // namespace relmap::exploration

@@ -1,5 +1,6 @@
-// Scores of a relevance map against ground truth (§6): the paper's soft metric
-// and the thresholded-soft metric behind the authors' published numbers.
+// Scores of a relevance map against ground truth (§6): the paper's soft metric,
+// the thresholded-soft metric behind the authors' published numbers, and the
+// usual classifier scores (balanced accuracy, log-loss, Brier) for benchmarks.
 #pragma once
 
 #include <Eigen/Core>
@@ -25,5 +26,19 @@ Scores SoftScores(const Eigen::VectorXd& relevance, const std::vector<bool>& mov
 // add 1 − P1 to tn.
 Scores ThresholdedSoftScores(const Eigen::VectorXd& relevance, const std::vector<bool>& moveable,
                              double threshold = 0.5);
+
+// Mean of the two per-class recalls when moveable means P1 >= θ: insensitive to
+// the class balance of the test set (0.5 for any constant prediction). Undefined
+// when a class is absent.
+std::optional<double> BalancedAccuracy(const Eigen::VectorXd& relevance,
+                                       const std::vector<bool>& moveable, double threshold = 0.5);
+
+// Mean of −log P(true class) with P1 clipped to [1e-15, 1 − 1e-15], so that one
+// confident mistake costs about 34.5 instead of +∞. Undefined for no sample.
+std::optional<double> LogLoss(const Eigen::VectorXd& relevance, const std::vector<bool>& moveable);
+
+// Mean of (P1 − y)² with y = 1 for moveable. Undefined for no sample.
+std::optional<double> BrierScore(const Eigen::VectorXd& relevance,
+                                 const std::vector<bool>& moveable);
 
 }  // namespace relmap::exploration

@@ -144,6 +144,7 @@ struct TestScores {
   exploration::Scores soft;
   exploration::Scores thresholded;
   double accuracy_at_half = 0.0;  // fraction of samples on the right side of 0.5
+  std::optional<double> balanced_accuracy, log_loss, brier;
 };
 
 TestScores Score(const cmm::CollaborativeMixtureModels& model,
@@ -151,7 +152,11 @@ TestScores Score(const cmm::CollaborativeMixtureModels& model,
   const Eigen::VectorXd p = model.Predict(test.features);
   const std::vector<bool> moveable(test.labels.begin(), test.labels.end());
   TestScores scores{exploration::SoftScores(p, moveable),
-                    exploration::ThresholdedSoftScores(p, moveable), 0.0};
+                    exploration::ThresholdedSoftScores(p, moveable),
+                    0.0,
+                    exploration::BalancedAccuracy(p, moveable),
+                    exploration::LogLoss(p, moveable),
+                    exploration::BrierScore(p, moveable)};
   int right = 0;
   for (Eigen::Index i = 0; i < p.size(); ++i) right += (p[i] >= 0.5) == moveable[i] ? 1 : 0;
   scores.accuracy_at_half = static_cast<double>(right) / static_cast<double>(p.size());
@@ -211,8 +216,10 @@ class Run {
     if (test_) {
       const TestScores s = Score(model_, *test_);
       test = fmt::format(
-          R"({{"samples":{},"soft":{},"thresholded_soft":{},"accuracy_at_0_5":{:.6g}}})",
-          test_->labels.size(), ScoresJson(s.soft), ScoresJson(s.thresholded), s.accuracy_at_half);
+          R"({{"samples":{},"soft":{},"thresholded_soft":{},"accuracy_at_0_5":{:.6g},)"
+          R"("balanced_accuracy":{},"log_loss":{},"brier":{}}})",
+          test_->labels.size(), ScoresJson(s.soft), ScoresJson(s.thresholded), s.accuracy_at_half,
+          Number(s.balanced_accuracy), Number(s.log_loss), Number(s.brier));
     }
     const LatencyRecorder& predict = test_ ? PredictLatencyOn(*test_) : PredictLatencyOn(train_);
     return fmt::format(

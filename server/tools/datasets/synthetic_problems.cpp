@@ -4,6 +4,7 @@
 #include "datasets/synthetic_problems.h"
 
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -68,30 +69,65 @@ LabelledSamples MakeProblem(const ProblemOptions& options) {
   cmm::Random random(options.seed);
   Gaussian gaussian(random);
   const int p = std::max(2, options.dimension);
+  const int constant = std::clamp(options.constant_dimensions, 0, p - 2);
+  const int varying = p - constant;
 
-  Eigen::MatrixXd basis = Eigen::MatrixXd::Identity(p, 2);
-  if (p > 2) {
+  Eigen::MatrixXd basis = Eigen::MatrixXd::Identity(varying, 2);
+  if (varying > 2) {
     cmm::Random embedding_random(options.embedding_seed);
     Gaussian embedding_gaussian(embedding_random);
-    Eigen::MatrixXd draw(p, 2);
+    Eigen::MatrixXd draw(varying, 2);
     for (int i = 0; i < draw.size(); ++i) draw.data()[i] = embedding_gaussian();
     basis = Eigen::HouseholderQR<Eigen::MatrixXd>(draw).householderQ() *
-            Eigen::MatrixXd::Identity(p, 2);
+            Eigen::MatrixXd::Identity(varying, 2);
   }
 
   LabelledSamples out;
   out.features.resize(options.samples, p);
   out.labels.resize(options.samples);
   for (int i = 0; i < options.samples; ++i) {
-    const int label = static_cast<int>(random.UniformIndex(2));
+    // The balanced case keeps its historical draw, so that its streams (and the
+    // tests built on them) stay the same samples.
+    const int label = options.positive_fraction == 0.5
+                          ? static_cast<int>(random.UniformIndex(2))
+                          : (random.UniformUnit() < options.positive_fraction ? 1 : 0);
     Eigen::Vector2d plane = PlanePoint(options.problem, label, random);
     plane += options.noise * Eigen::Vector2d(gaussian(), gaussian());
-    Eigen::VectorXd x = basis * plane;
-    if (p > 2) {
-      for (int k = 0; k < p; ++k) x[k] += options.ambient_noise * gaussian();
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(p);
+    x.head(varying) = basis * plane;
+    if (varying > 2) {
+      for (int k = 0; k < varying; ++k) x[k] += options.ambient_noise * gaussian();
     }
     out.features.row(i) = x.transpose();
     out.labels[i] = label;
+  }
+  return out;
+}
+
+void FlipLabels(LabelledSamples& samples, double fraction, std::uint64_t seed) {
+  const auto n = samples.labels.size();
+  const auto flips = static_cast<std::size_t>(
+      std::llround(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(n)));
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  // The first `flips` steps of a Fisher-Yates shuffle: a uniform subset.
+  cmm::Random random(seed);
+  for (std::size_t i = 0; i < flips; ++i) {
+    std::swap(order[i], order[i + random.UniformIndex(n - i)]);
+    samples.labels[order[i]] = 1 - samples.labels[order[i]];
+  }
+}
+
+Eigen::MatrixXd MapToUnitRange(const Eigen::MatrixXd& reference, const Eigen::MatrixXd& features) {
+  Eigen::MatrixXd out(features.rows(), features.cols());
+  for (Eigen::Index j = 0; j < features.cols(); ++j) {
+    const double low = reference.col(j).minCoeff();
+    const double range = reference.col(j).maxCoeff() - low;
+    if (range == 0.0) {
+      out.col(j).setZero();
+    } else {
+      out.col(j) = ((features.col(j).array() - low) / range).cwiseMax(0.0).cwiseMin(1.0);
+    }
   }
   return out;
 }

@@ -35,10 +35,28 @@ struct ProblemOptions {
   // training and test sets drawn with different seeds share one embedding.
   std::uint64_t seed = 1;
   std::uint64_t embedding_seed = 0;
+  // Probability that a sample is of class 1 (0.2 gives an imbalance of 1:4).
+  double positive_fraction = 0.5;
+  // The last `constant_dimensions` of the p dimensions are exactly 0, like the
+  // colour bins the 2018 colour conversion never fills (ALGORITHMS §2); the
+  // problem and its ambient noise live in the other p − constant_dimensions.
+  int constant_dimensions = 0;
 };
 
-// Each sample's class is drawn with probability 1/2; the same options give the same
-// samples on every machine (the generator draws from relmap's own RNG).
+// Each sample's class is drawn with probability `positive_fraction`; the same
+// options give the same samples on every machine (the generator draws from
+// relmap's own RNG).
 LabelledSamples MakeProblem(const ProblemOptions& options);
+
+// Flips the labels of round(fraction · n) samples chosen uniformly without
+// replacement with `seed`: label noise of an exact rate, features untouched.
+void FlipLabels(LabelledSamples& samples, double fraction, std::uint64_t seed);
+
+// `features` with each column mapped by the affine map that takes the range
+// [min, max] of that column of `reference` onto [0, 1], then clipped to [0, 1]
+// (real features never leave it); a constant column of `reference` maps to 0.
+// Map the test set with the training set as reference, so that both share one
+// map and the test set tells the learner nothing.
+Eigen::MatrixXd MapToUnitRange(const Eigen::MatrixXd& reference, const Eigen::MatrixXd& features);
 
 }  // namespace relmap::datasets

@@ -1,7 +1,10 @@
-// The §6 scores: soft, thresholded-soft, and undefined ratios.
+// The §6 scores (soft, thresholded-soft, undefined ratios) and the benchmark's
+// balanced accuracy, log-loss and Brier score.
 #include "exploration/metrics.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace relmap::exploration {
 namespace {
@@ -35,6 +38,52 @@ TEST(Metrics, UndefinedRatiosAreNullNotNumbers) {
   EXPECT_FALSE(s.recall.has_value());
   EXPECT_FALSE(s.accuracy.has_value());
   EXPECT_TRUE(s.precision.has_value());
+}
+
+TEST(Metrics, BalancedAccuracyIsTheMeanOfTheTwoRecalls) {
+  // Three objects (P1 = 0.9, 0.5, 0.4) and one background (P1 = 0.2): at θ = 0.5
+  // the objects give recall 2/3 (0.5 counts as moveable), the background 1/1 →
+  // ½(2/3 + 1) = 5/6, where plain accuracy would be 3/4.
+  const Eigen::Vector4d p(0.9, 0.5, 0.4, 0.2);
+  const std::vector<bool> moveable{true, true, true, false};
+  EXPECT_NEAR(*BalancedAccuracy(p, moveable), 5.0 / 6.0, 1e-12);
+}
+
+TEST(Metrics, BalancedAccuracyOfAConstantPredictionIsOneHalf) {
+  // Everything predicted moveable: recall 1 for objects, 0 for background.
+  const Eigen::Vector4d p = Eigen::Vector4d::Constant(0.7);
+  EXPECT_DOUBLE_EQ(*BalancedAccuracy(p, {true, false, false, false}), 0.5);
+}
+
+TEST(Metrics, BalancedAccuracyIsUndefinedWithoutBothClasses) {
+  EXPECT_FALSE(BalancedAccuracy(Eigen::Vector2d(0.3, 0.8), {true, true}).has_value());
+}
+
+TEST(Metrics, LogLossIsTheMeanNegativeLogProbabilityOfTheTruth) {
+  // An object with P1 = 0.8 costs −log 0.8; a background with P1 = 0.4 costs
+  // −log 0.6 → mean ½(0.22314355 + 0.51082562) = 0.36698459.
+  const Eigen::Vector2d p(0.8, 0.4);
+  EXPECT_NEAR(*LogLoss(p, {true, false}), 0.5 * (-std::log(0.8) - std::log(0.6)), 1e-12);
+  EXPECT_NEAR(*LogLoss(p, {true, false}), 0.36698459, 1e-8);
+}
+
+TEST(Metrics, LogLossClipsCertainMistakes) {
+  // P1 = 0 for an object: −log(1e-15) = 15 ln 10 = 34.538776, not +∞; P1 = 1
+  // for an object costs −log(1 − 1e-15) ≈ 1e-15.
+  const Eigen::Vector2d p(0.0, 1.0);
+  EXPECT_NEAR(*LogLoss(p, {true, true}), 0.5 * 15.0 * std::log(10.0), 1e-9);
+}
+
+TEST(Metrics, BrierScoreIsTheMeanSquaredErrorOfP1) {
+  // (0.8 − 1)² = 0.04, (0.4 − 0)² = 0.16, (0.5 − 1)² = 0.25 → 0.45 / 3 = 0.15.
+  const Eigen::Vector3d p(0.8, 0.4, 0.5);
+  EXPECT_NEAR(*BrierScore(p, {true, false, true}), 0.15, 1e-12);
+}
+
+TEST(Metrics, LogLossAndBrierAreUndefinedWithoutSamples) {
+  const Eigen::VectorXd none(0);
+  EXPECT_FALSE(LogLoss(none, {}).has_value());
+  EXPECT_FALSE(BrierScore(none, {}).has_value());
 }
 
 }  // namespace

@@ -38,6 +38,8 @@ expect bad-alpha 2 "alpha must lie in [0, 1]" "$cmm" --train "$dir/train.csv" --
 expect bad-variant 2 "unknown classifier variant" "$cmm" --train "$dir/train.csv" --variant x
 expect dimension-mismatch 2 "one-feature.csv has 1 features per row" "$cmm" --train "$dir/train.csv" --test "$dir/one-feature.csv"
 expect online 0 '"mode":"online"' "$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --curve 100
+expect test-scores 0 '"balanced_accuracy":0.' "$cmm" --train "$dir/train.csv" --test "$dir/test.csv"
+expect test-log-loss 0 '"log_loss":' "$cmm" --train "$dir/train.csv" --test "$dir/test.csv"
 expect active 0 '"mode":"active","dimension":3,"samples":[' "$cmm" --train "$dir/train.csv" --active --budget 50 --seed 3
 expect paper 0 '"variant":"paper2018"' "$cmm" --train "$dir/train.csv" --variant paper2018
 expect curve-csv-needs-test 2 "--curve-csv needs --curve N and --test" "$cmm" --train "$dir/train.csv" --curve-csv "$dir/c.csv"
