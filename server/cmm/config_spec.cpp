@@ -91,9 +91,9 @@ StatusOr<CmmConfig> ParseConfiguration(std::string_view spec) {
   CmmConfig config = CmmConfig::ForVariant(*variant);
   std::string_view options = colon == std::string_view::npos ? "" : spec.substr(colon + 1);
   while (!options.empty()) {
-    const std::size_t comma = options.find(',');
-    const std::string_view option = options.substr(0, comma);
-    options = comma == std::string_view::npos ? "" : options.substr(comma + 1);
+    const std::size_t next = options.find(':');
+    const std::string_view option = options.substr(0, next);
+    options = next == std::string_view::npos ? "" : options.substr(next + 1);
     const std::size_t equals = option.find('=');
     if (equals == std::string_view::npos) {
       return InvalidArgumentError("configuration option '" + std::string(option) +
@@ -126,7 +126,7 @@ std::string ConfigurationName(const CmmConfig& config) {
   word("overlap", config.split_overlap, preset.split_overlap, kOverlap);
   word("prediction", config.prediction, preset.prediction, kPrediction);
   std::string name(VariantName(config.variant));
-  for (std::size_t i = 0; i < changed.size(); ++i) name += (i == 0 ? ":" : ",") + changed[i];
+  for (const std::string& option : changed) name += ":" + option;
   return name;
 }
 

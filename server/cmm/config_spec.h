@@ -11,9 +11,10 @@
 
 namespace relmap::cmm {
 
-// "variant[:key=value[,key=value...]]", e.g. "corrected",
-// "corrected:acceptance=training", "corrected_v1:regularization=1e-3",
-// "corrected:alpha=1". Keys and values:
+// "variant[:key=value[:key=value...]]", e.g. "corrected",
+// "corrected:acceptance=training:prediction=pseudo_count",
+// "corrected_v1:regularization=1e-3", "corrected:alpha=1" (colons, so that a
+// comma-separated list of configurations stays one word). Keys and values:
 //   alpha, regularization, pseudo_samples, variance_floor: numbers;
 //   covariance = ridge | prior;  acceptance = training | loo;
 //   overlap = mean | samples;     prediction = pseudo_count | calibrated.

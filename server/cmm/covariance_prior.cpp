@@ -5,7 +5,9 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <vector>
 
 #include "cmm/whitened_distance.h"
 
@@ -18,39 +20,56 @@ constexpr double kBackgroundInflation = 4.0;
 
 const double kLogTwoPi = std::log(2.0 * std::numbers::pi);
 
+// The local scatter is estimated from at most this many samples (the first
+// ones): it is a scale, and its cost grows with the square of the count.
+constexpr int kLocalScatterSamples = 2048;
+
 struct Moments {
-  Eigen::MatrixXd within_scatter;  // Σ_l Σ_{i∈l} (x_i − x̄_l)(x_i − x̄_l)ᵀ
-  Eigen::MatrixXd total_scatter;   // Σ_i (x_i − x̄)(x_i − x̄)ᵀ
+  // Σ_i (x_i − x_nn(i))(x_i − x_nn(i))ᵀ over pairs of nearest neighbours of one
+  // class: E = 2Σ_local for a smooth density, whatever the spread between
+  // clusters.
+  Eigen::MatrixXd neighbour_scatter;
+  int neighbour_pairs = 0;
+  Eigen::MatrixXd total_scatter;  // Σ_i (x_i − x̄)(x_i − x̄)ᵀ
   Eigen::VectorXd mean;
-  int within_dof = 0;  // count − number of classes present
 };
 
-// Two passes (means, then centred scatters): the one-pass formula loses the
+// Every sample's nearest neighbour of its own class among the first `count`
+// samples (−1 when it is alone in its class), by brute force: O(count²·p).
+std::vector<int> SameClassNearestNeighbours(const Dataset& data, int count) {
+  std::vector<int> nearest(count, -1);
+  std::vector<double> best(count, std::numeric_limits<double>::infinity());
+  for (int i = 0; i < count; ++i) {
+    for (int j = i + 1; j < count; ++j) {
+      if (data.label(i) != data.label(j)) continue;
+      const double d = (data.sample(i) - data.sample(j)).squaredNorm();
+      if (d < best[i]) best[i] = d, nearest[i] = j;
+      if (d < best[j]) best[j] = d, nearest[j] = i;
+    }
+  }
+  return nearest;
+}
+
+// Two passes (mean, then centred scatter): the one-pass formula loses the
 // small variances of [0, 1] features to cancellation.
 Moments ComputeMoments(const Dataset& data, int count) {
   const int p = data.dimension();
   Moments m;
-  Eigen::VectorXd class_sum[2] = {Eigen::VectorXd::Zero(p), Eigen::VectorXd::Zero(p)};
-  int class_count[2] = {0, 0};
-  for (int i = 0; i < count; ++i) {
-    class_sum[data.label(i)] += data.sample(i);
-    ++class_count[data.label(i)];
-  }
-  m.mean = (class_sum[0] + class_sum[1]) / count;
-  Eigen::VectorXd class_mean[2];
-  for (int l = 0; l < 2; ++l) {
-    class_mean[l] = class_count[l] > 0 ? Eigen::VectorXd(class_sum[l] / class_count[l])
-                                       : Eigen::VectorXd::Zero(p);
-  }
-  Eigen::MatrixXd within(p, count);
+  m.mean = Eigen::VectorXd::Zero(p);
+  for (int i = 0; i < count; ++i) m.mean += data.sample(i);
+  m.mean /= count;
   Eigen::MatrixXd total(p, count);
-  for (int i = 0; i < count; ++i) {
-    within.col(i) = data.sample(i) - class_mean[data.label(i)];
-    total.col(i) = data.sample(i) - m.mean;
-  }
-  m.within_scatter.noalias() = within * within.transpose();
+  for (int i = 0; i < count; ++i) total.col(i) = data.sample(i) - m.mean;
   m.total_scatter.noalias() = total * total.transpose();
-  m.within_dof = count - (class_count[0] > 0) - (class_count[1] > 0);
+
+  const int local = std::min(count, kLocalScatterSamples);
+  const std::vector<int> nearest = SameClassNearestNeighbours(data, local);
+  Eigen::MatrixXd differences(p, local);
+  for (int i = 0; i < local; ++i) {
+    if (nearest[i] >= 0) differences.col(m.neighbour_pairs++) = data.sample(i) - data.sample(nearest[i]);
+  }
+  const auto used = differences.leftCols(m.neighbour_pairs);
+  m.neighbour_scatter.noalias() = used * used.transpose();
   return m;
 }
 
@@ -95,8 +114,10 @@ CovariancePrior ComputeCovariancePrior(const Dataset& data, int count, const Cmm
   prior.pseudo_samples = config.PseudoSamples(p);
   const Eigen::MatrixXd total =
       ShrunkCovariance(moments.total_scatter, count - 1, fallback);
-  prior.scale = moments.within_dof > 0 && moments.within_scatter.trace() > 0.0
-                    ? ShrunkCovariance(moments.within_scatter, moments.within_dof, fallback)
+  // Σ_local = E[ddᵀ]/2 over the neighbour differences d.
+  prior.scale = moments.neighbour_pairs > 0 && moments.neighbour_scatter.trace() > 0.0
+                    ? ShrunkCovariance(moments.neighbour_scatter / 2.0, moments.neighbour_pairs,
+                                       fallback)
                     : total;
   prior.floor = config.variance_floor * prior.scale.trace() / p;
 

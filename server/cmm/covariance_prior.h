@@ -31,10 +31,13 @@ struct CovariancePrior {
 };
 
 // The prior after the first `count` samples of `data` (count >= 1):
-// Ψ = OAS(pooled within-class covariance) (Chen et al., 2010, eq. 23), which
-// is positive definite whenever the data vary at all; the total covariance when
-// no class has two samples yet; (‖x̄‖²/p)·I, or I, while every sample is the
-// same point. φ = variance_floor · tr(Ψ)/p. Deterministic: the same data give
+// Ψ = OAS(Σ_local) (Chen et al., 2010, eq. 23), Σ_local = ½·mean of dᵢdᵢᵀ over
+// the differences dᵢ between each sample and its nearest neighbour of the same
+// class (the difference-based variance estimator: the covariance of the data
+// at the scale of a neighbourhood, not of a whole class, which in XOR blobs or
+// rings spans several clusters); the total covariance when no class has two
+// samples yet; (‖x̄‖²/p)·I, or I, while every sample is the same point. OAS
+// keeps Ψ positive definite whenever the data vary at all. φ = variance_floor · tr(Ψ)/p. Deterministic: the same data give
 // the same bits, which is how a snapshot restores it.
 CovariancePrior ComputeCovariancePrior(const Dataset& data, int count, const CmmConfig& config);
 

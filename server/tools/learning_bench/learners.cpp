@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "cmm/config.h"
+#include "cmm/config_spec.h"
 #include "learning_bench/averaged_logistic_sgd.h"
 #include "learning_bench/cmm_learner.h"
 #include "learning_bench/gaussian_naive_bayes.h"
@@ -13,12 +13,7 @@ namespace relmap::learning_bench {
 namespace {
 
 StatusOr<cmm::CmmConfig> CmmConfigNamed(std::string_view name) {
-  const bool alpha1 = name == "alpha1";
-  const auto variant = cmm::ParseVariant(alpha1 ? "corrected" : name);
-  if (!variant.ok()) return variant.status();
-  cmm::CmmConfig config = cmm::CmmConfig::ForVariant(*variant);
-  if (alpha1) config.alpha = 1.0;
-  return config;
+  return cmm::ParseConfiguration(name == "alpha1" ? "corrected:alpha=1" : name);
 }
 
 }  // namespace

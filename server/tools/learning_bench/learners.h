@@ -1,5 +1,5 @@
-// The benchmark's learners by name: CMM configurations (any name
-// cmm::ParseVariant knows, plus `alpha1`) and the baselines gnb, sgd and knn.
+// The benchmark's learners by name: CMM configurations (any text
+// cmm::ParseConfiguration reads, plus `alpha1`) and the baselines gnb, sgd and knn.
 #pragma once
 
 #include <cstdint>
@@ -15,8 +15,8 @@ inline constexpr std::string_view kDefaultLearners =
     "corrected,corrected_v1,paper2018,alpha1,gnb,sgd,knn";
 
 // A fresh learner for samples of `dimension` values. A CMM name is passed to
-// cmm::ParseVariant as it is, so that variants added to the classifier need no
-// change here; `alpha1` is `corrected` with α = 1 (no split, no merge: one
+// cmm::ParseConfiguration as it is ("corrected", "corrected:acceptance=training"),
+// so that variants and options added to the classifier need no change here; `alpha1` is `corrected` with α = 1 (no split, no merge: one
 // Gaussian per class, the paper's ablation). CMMs draw from `seed`. An unknown
 // name → INVALID_ARGUMENT.
 StatusOr<std::unique_ptr<OnlineLearner>> MakeLearner(std::string_view name, int dimension,

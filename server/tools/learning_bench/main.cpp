@@ -38,7 +38,7 @@ constexpr std::string_view kUsage =
     "         [--stream NAME=TRAIN.csv:TEST.csv ...] [--train-samples 400] [--test-samples 2000]\n"
     "         [--curve 50] [--seed 1] [--replications 3] [--out DIR] [--reference]\n"
     "         [--reference-script PATH]\n"
-    "  --learners  CMM variants (any name the classifier knows), alpha1 (corrected with\n"
+    "  --learners  CMM configurations (corrected, corrected:acceptance=training, ...), alpha1 (corrected with\n"
     "              alpha = 1), gnb, sgd, knn; unknown names are skipped with a warning.\n"
     "              Default: corrected,corrected_v1,paper2018,alpha1,gnb,sgd,knn\n"
     "  --streams   built-in streams (default: the whole suite, or none when --stream\n"
