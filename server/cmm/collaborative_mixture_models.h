@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "cmm/calibration.h"
 #include "cmm/component.h"
 #include "cmm/config.h"
 #include "cmm/covariance_prior.h"
@@ -67,8 +68,9 @@ class CollaborativeMixtureModels {
   // model's prediction rule. Fills the lazy cache.
   double LogLikelihood();
 
-  // τ of the calibrated prediction (§3.3); 1 under the pseudo-count.
-  double temperature() const { return temperature_; }
+  // τ and ε of the calibrated prediction (§3.3); (1, 0) under the pseudo-count.
+  const Calibration& calibration() const { return calibration_; }
+  double temperature() const { return calibration_.temperature; }
   // The session's covariance prior (kPooledPrior; computed_from = 0 otherwise).
   const CovariancePrior& prior() const { return prior_; }
 
@@ -137,9 +139,10 @@ class CollaborativeMixtureModels {
   Eigen::VectorXd CriterionClassLogDensity(const std::vector<Component*>& members,
                                            bool stored_weights);
   // log P(l_i | x_i) of every sample from both classes' criterion densities;
-  // fits τ when the prediction is calibrated and reports it in `tau`.
+  // fits the calibration when the prediction is calibrated (from the current
+  // one) and reports it in `calibration`.
   Eigen::VectorXd SampleLogProbabilities(const std::array<Eigen::VectorXd, 2>& log_gamma,
-                                         double& tau);
+                                         Calibration& calibration);
 
   CmmConfig config_;
   Dataset data_;
@@ -147,7 +150,7 @@ class CollaborativeMixtureModels {
   Random random_;
   ToleranceThresholdTable tolerance_;
   CovariancePrior prior_;
-  double temperature_ = 1.0;
+  Calibration calibration_;
   Eigen::VectorXd sample_log_pseudo_count_;  // empty = to be computed
   // log Γ_l(x_i) of each class, log P(l_i | x_i) of each sample and their sum
   // L, kept between candidate evaluations while the model does not change

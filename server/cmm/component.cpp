@@ -184,6 +184,10 @@ void Component::Refresh(const Dataset& data, const CmmConfig& config,
   // log G = −½ d² − Σ log L_ii − (p/2) log 2π: the log domain avoids the
   // underflow of a product of 48 Gaussian factors.
   log_normaliser_ = -lower.diagonal().array().log().sum() - 0.5 * p * kLogTwoPi;
+  if (pseudo_samples_ > 0.0 && m >= 2) {
+    leave_one_out_log_normaliser_ =
+        log_normaliser_ - 0.5 * p * std::log((m + pseudo_samples_) / (m - 1.0 + pseudo_samples_));
+  }
   shape_ = Shape::kGaussian;
 }
 
@@ -213,7 +217,6 @@ double Component::LeaveOneOutLogDensity(double log_density) const {
   assert(pseudo_samples_ > 0.0);
   const double m = size();
   if (m < 2.0) return -std::numeric_limits<double>::infinity();
-  const double p = static_cast<double>(mean_.size());
   const double kappa = pseudo_samples_;
   const double a = m / (m - 1.0);
   const double q = SquaredDistanceFromLogDensity(log_density) / (m + kappa);
@@ -222,8 +225,7 @@ double Component::LeaveOneOutLogDensity(double log_density) const {
   // crossing it.
   const double remaining = std::max(1.0 - a * q, 1e-12);
   const double squared = (m - 1.0 + kappa) * a * a * q / remaining;
-  const double log_det_change = p * std::log((m + kappa) / (m - 1.0 + kappa)) + std::log(remaining);
-  return log_normaliser_ - 0.5 * log_det_change - 0.5 * squared;
+  return leave_one_out_log_normaliser_ - 0.5 * std::log(remaining) - 0.5 * squared;
 }
 
 std::span<const double> Component::LogDensityColumn(const Dataset& data) {

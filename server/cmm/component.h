@@ -118,6 +118,9 @@ class Component {
   double log_normaliser_ = 0.0;
   // κ of the prior the covariance was estimated under; 0 without one.
   double pseudo_samples_ = 0.0;
+  // log_normaliser_ − (p/2) log((m + κ)/(m − 1 + κ)): the part of the
+  // leave-one-out log-normaliser shared by all the component's samples.
+  double leave_one_out_log_normaliser_ = 0.0;
 
   std::vector<double> log_density_column_;
   NearestNeighbourGraph nearest_;  // empty = not built yet

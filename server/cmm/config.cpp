@@ -25,6 +25,16 @@ CmmConfig CmmConfig::ForVariant(Variant variant) {
   return config;
 }
 
+double CmmConfig::PseudoSamples(int dimension) const {
+  if (prior_pseudo_samples > 0.0) return prior_pseudo_samples;
+  const double target = std::log(dimension + 2.0);
+  double nearest = kPseudoSampleGrid[0];
+  for (const double kappa : kPseudoSampleGrid) {
+    if (std::abs(std::log(kappa) - target) < std::abs(std::log(nearest) - target)) nearest = kappa;
+  }
+  return nearest;
+}
+
 Status Validate(const CmmConfig& config) {
   if (!(config.alpha >= 0.0 && config.alpha <= 1.0)) {
     return InvalidArgumentError("alpha must lie in [0, 1], got " + std::to_string(config.alpha));
@@ -41,7 +51,8 @@ Status Validate(const CmmConfig& config) {
     return InvalidArgumentError("variance_floor must lie in (0, 1], got " +
                                 std::to_string(config.variance_floor));
   }
-  if (static_cast<unsigned>(config.covariance) > 1 || static_cast<unsigned>(config.acceptance) > 1 ||
+  if (static_cast<unsigned>(config.covariance) > 1 ||
+      static_cast<unsigned>(config.acceptance) > 1 ||
       static_cast<unsigned>(config.split_overlap) > 1 ||
       static_cast<unsigned>(config.prediction) > 1 || static_cast<unsigned>(config.variant) > 2) {
     return InvalidArgumentError("a CMM option is out of range");
@@ -51,7 +62,8 @@ Status Validate(const CmmConfig& config) {
     return InvalidArgumentError("the leave-one-out test needs the pooled covariance prior");
   }
   if (config.covariance == CovarianceEstimate::kPooledPrior && config.switches.pseudo_density) {
-    return InvalidArgumentError("the pooled covariance prior excludes the paper2018 pseudo density");
+    return InvalidArgumentError(
+        "the pooled covariance prior excludes the paper2018 pseudo density");
   }
   return OkStatus();
 }

@@ -34,6 +34,8 @@ constexpr Word<SplitOverlap> kOverlap[] = {{"mean", SplitOverlap::kOtherMean},
 constexpr Word<Prediction> kPrediction[] = {{"pseudo_count", Prediction::kPseudoCount},
                                             {"calibrated", Prediction::kCalibrated}};
 
+constexpr Word<bool> kOnOff[] = {{"on", true}, {"off", false}};
+
 template <typename Enum, std::size_t N>
 Status ParseWord(std::string_view key, std::string_view text, const Word<Enum> (&words)[N],
                  Enum& out) {
@@ -77,9 +79,10 @@ Status ApplyOption(std::string_view key, std::string_view value, CmmConfig& c) {
   if (key == "acceptance") return ParseWord(key, value, kAcceptance, c.acceptance);
   if (key == "overlap") return ParseWord(key, value, kOverlap, c.split_overlap);
   if (key == "prediction") return ParseWord(key, value, kPrediction, c.prediction);
+  if (key == "label_noise") return ParseWord(key, value, kOnOff, c.fit_label_noise);
   return InvalidArgumentError("unknown configuration option '" + std::string(key) +
                               "' (expected alpha, regularization, pseudo_samples, variance_floor, "
-                              "covariance, acceptance, overlap or prediction)");
+                              "covariance, acceptance, overlap, prediction or label_noise)");
 }
 
 }  // namespace
@@ -125,6 +128,7 @@ std::string ConfigurationName(const CmmConfig& config) {
   word("acceptance", config.acceptance, preset.acceptance, kAcceptance);
   word("overlap", config.split_overlap, preset.split_overlap, kOverlap);
   word("prediction", config.prediction, preset.prediction, kPrediction);
+  word("label_noise", config.fit_label_noise, preset.fit_label_noise, kOnOff);
   std::string name(VariantName(config.variant));
   for (const std::string& option : changed) name += ":" + option;
   return name;

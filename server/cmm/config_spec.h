@@ -17,7 +17,8 @@ namespace relmap::cmm {
 // comma-separated list of configurations stays one word). Keys and values:
 //   alpha, regularization, pseudo_samples, variance_floor: numbers;
 //   covariance = ridge | prior;  acceptance = training | loo;
-//   overlap = mean | samples;     prediction = pseudo_count | calibrated.
+//   overlap = mean | samples;     prediction = pseudo_count | calibrated;
+//   label_noise = on | off.
 // An unknown key or value, or a result that fails Validate → INVALID_ARGUMENT.
 StatusOr<CmmConfig> ParseConfiguration(std::string_view spec);
 

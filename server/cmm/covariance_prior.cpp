@@ -66,7 +66,8 @@ Moments ComputeMoments(const Dataset& data, int count) {
   const std::vector<int> nearest = SameClassNearestNeighbours(data, local);
   Eigen::MatrixXd differences(p, local);
   for (int i = 0; i < local; ++i) {
-    if (nearest[i] >= 0) differences.col(m.neighbour_pairs++) = data.sample(i) - data.sample(nearest[i]);
+    if (nearest[i] >= 0)
+      differences.col(m.neighbour_pairs++) = data.sample(i) - data.sample(nearest[i]);
   }
   const auto used = differences.leftCols(m.neighbour_pairs);
   m.neighbour_scatter.noalias() = used * used.transpose();
@@ -112,13 +113,12 @@ CovariancePrior ComputeCovariancePrior(const Dataset& data, int count, const Cmm
   CovariancePrior prior;
   prior.computed_from = count;
   prior.pseudo_samples = config.PseudoSamples(p);
-  const Eigen::MatrixXd total =
-      ShrunkCovariance(moments.total_scatter, count - 1, fallback);
+  const Eigen::MatrixXd total = ShrunkCovariance(moments.total_scatter, count - 1, fallback);
   // Σ_local = E[ddᵀ]/2 over the neighbour differences d.
-  prior.scale = moments.neighbour_pairs > 0 && moments.neighbour_scatter.trace() > 0.0
-                    ? ShrunkCovariance(moments.neighbour_scatter / 2.0, moments.neighbour_pairs,
-                                       fallback)
-                    : total;
+  prior.scale =
+      moments.neighbour_pairs > 0 && moments.neighbour_scatter.trace() > 0.0
+          ? ShrunkCovariance(moments.neighbour_scatter / 2.0, moments.neighbour_pairs, fallback)
+          : total;
   prior.floor = config.variance_floor * prior.scale.trace() / p;
 
   Eigen::MatrixXd background = kBackgroundInflation * total;
@@ -127,8 +127,7 @@ CovariancePrior ComputeCovariancePrior(const Dataset& data, int count, const Cmm
   const Eigen::MatrixXd lower = cholesky.matrixL();
   prior.background_whitening =
       lower.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(p, p));
-  prior.background_log_normaliser =
-      -lower.diagonal().array().log().sum() - 0.5 * p * kLogTwoPi;
+  prior.background_log_normaliser = -lower.diagonal().array().log().sum() - 0.5 * p * kLogTwoPi;
   prior.background_mean = moments.mean;
   return prior;
 }

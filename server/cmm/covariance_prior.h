@@ -12,10 +12,10 @@
 namespace relmap::cmm {
 
 struct CovariancePrior {
-  int computed_from = 0;  // the first this many samples of the dataset; 0 = none yet
-  Eigen::MatrixXd scale;  // Ψ
+  int computed_from = 0;        // the first this many samples of the dataset; 0 = none yet
+  Eigen::MatrixXd scale;        // Ψ
   double pseudo_samples = 0.0;  // κ
-  double floor = 0.0;  // φ, added to the diagonal of every component's covariance
+  double floor = 0.0;           // φ, added to the diagonal of every component's covariance
 
   // B(x) = N(x; mean, 4Σ_t), Σ_t the dataset's total covariance shrunk like Ψ:
   // twice the spread of all the data, so that it is negligible next to the
@@ -37,8 +37,8 @@ struct CovariancePrior {
 // at the scale of a neighbourhood, not of a whole class, which in XOR blobs or
 // rings spans several clusters); the total covariance when no class has two
 // samples yet; (‖x̄‖²/p)·I, or I, while every sample is the same point. OAS
-// keeps Ψ positive definite whenever the data vary at all. φ = variance_floor · tr(Ψ)/p. Deterministic: the same data give
-// the same bits, which is how a snapshot restores it.
+// keeps Ψ positive definite whenever the data vary at all. φ = variance_floor · tr(Ψ)/p.
+// Deterministic: the same data give the same bits, which is how a snapshot restores it.
 CovariancePrior ComputeCovariancePrior(const Dataset& data, int count, const CmmConfig& config);
 
 // Whether the prior is recomputed when the dataset reaches `size` samples: at

@@ -15,13 +15,19 @@
 namespace relmap::cmm {
 namespace {
 
+// Terms this far below the largest change the sum by less than a rounding
+// (as in mixture_density.cpp), so they are not exponentiated.
+constexpr double kNegligible = 50.0;
+
 // log Σ_t e^{terms[t]}; −∞ when every term is.
 double LogSumExp(std::span<const double> terms) {
   double high = kNegativeInfinity;
   for (const double t : terms) high = std::max(high, t);
   if (high == kNegativeInfinity) return high;
   double sum = 0.0;
-  for (const double t : terms) sum += std::exp(t - high);
+  for (const double t : terms) {
+    if (t - high > -kNegligible) sum += std::exp(t - high);
+  }
   return high + std::log(sum);
 }
 
@@ -57,24 +63,34 @@ Eigen::VectorXd CollaborativeMixtureModels::CriterionClassLogDensity(
 
   // Sample i of component k, taken out: weights (m_j − [j = k])/(M − 1), and
   // component k's density without it.
-  const double log_rest = std::log(total - 1.0);  // −∞ for a class of one sample
+  if (total <= 1.0) {
+    for (const Component* c : members) {
+      for (const int i : c->indices()) log_gamma[i] = kNegativeInfinity;
+    }
+    return log_gamma;
+  }
+  const double log_rest = std::log(total - 1.0);
+  std::vector<double> log_weight(members.size());
+  for (std::size_t t = 0; t < members.size(); ++t) {
+    log_weight[t] = std::log(members[t]->size()) - log_rest;
+  }
   std::vector<double> terms(members.size());
   for (std::size_t k = 0; k < members.size(); ++k) {
     const Component& own = *members[k];
     const double log_own_weight = std::log(own.size() - 1.0) - log_rest;
     for (const int i : own.indices()) {
       for (std::size_t t = 0; t < members.size(); ++t) {
-        terms[t] = t == k ? log_own_weight + own.LeaveOneOutLogDensity(columns[t].log_density[i])
-                          : std::log(members[t]->size()) - log_rest + columns[t].log_density[i];
+        terms[t] = log_weight[t] + columns[t].log_density[i];
       }
-      log_gamma[i] = total > 1.0 ? LogSumExp(terms) : kNegativeInfinity;
+      terms[k] = log_own_weight + own.LeaveOneOutLogDensity(columns[k].log_density[i]);
+      log_gamma[i] = LogSumExp(terms);
     }
   }
   return log_gamma;
 }
 
 Eigen::VectorXd CollaborativeMixtureModels::SampleLogProbabilities(
-    const std::array<Eigen::VectorXd, 2>& log_gamma, double& tau) {
+    const std::array<Eigen::VectorXd, 2>& log_gamma, Calibration& calibration) {
   const int n = data_.size();
   const Eigen::VectorXd& log_pseudo = SampleLogPseudoCounts();
   const double log_weight = LogPseudoCountWeight();
@@ -83,11 +99,17 @@ Eigen::VectorXd CollaborativeMixtureModels::SampleLogProbabilities(
     const int l = data_.label(i);
     z[i] = LogOdds(log_gamma[l][i], log_gamma[1 - l][i], log_weight + log_pseudo[i]);
   }
-  tau = config_.prediction == Prediction::kCalibrated
-            ? FitTemperature({z.data(), static_cast<std::size_t>(n)})
-            : 1.0;
+  // Calibrated: fitted afresh, from the model's current calibration (a warm
+  // start: a few EM iterations per candidate instead of dozens).
+  const std::span<const double> log_odds{z.data(), static_cast<std::size_t>(n)};
+  calibration = Calibration{};
+  if (config_.prediction == Prediction::kCalibrated) {
+    calibration = config_.fit_label_noise
+                      ? FitCalibration(log_odds, calibration_)
+                      : Calibration{FitTemperature(log_odds, {}, calibration_.temperature), 0.0};
+  }
   Eigen::VectorXd out(n);
-  for (int i = 0; i < n; ++i) out[i] = LogSigmoid(tau * z[i]);
+  for (int i = 0; i < n; ++i) out[i] = LogCalibratedProbability(z[i], calibration);
   return out;
 }
 
@@ -100,7 +122,7 @@ double CollaborativeMixtureModels::LogLikelihood() {
       class_log_density_[label] = CriterionClassLogDensity(members, true);
     }
   }
-  sample_log_probability_ = SampleLogProbabilities(class_log_density_, temperature_);
+  sample_log_probability_ = SampleLogProbabilities(class_log_density_, calibration_);
   log_likelihood_ = sample_log_probability_.sum();
   return *log_likelihood_;
 }
@@ -127,8 +149,8 @@ bool CollaborativeMixtureModels::ImprovesLikelihood(int label, const std::vector
   // ΔL as a sum of per-sample differences rather than a difference of two sums:
   // samples the change does not reach contribute exactly 0, so rounding in the
   // sum over all n samples cannot fake a strict increase.
-  double tau = 1.0;
-  const Eigen::VectorXd candidate = SampleLogProbabilities(log_gamma, tau);
+  Calibration calibration;
+  const Eigen::VectorXd candidate = SampleLogProbabilities(log_gamma, calibration);
   return (candidate - sample_log_probability_).sum() > 0.0;
 }
 

@@ -2,6 +2,7 @@
 // (§4.2): one pass of the distance kernel per component over all N points.
 #include <limits>
 
+#include "cmm/calibration.h"
 #include "cmm/collaborative_mixture_models.h"
 #include "cmm/log_math.h"
 #include "cmm/mixture_density.h"
@@ -52,9 +53,9 @@ Evaluation CollaborativeMixtureModels::Evaluate(
   result.nearest_log_membership.resize(n);
   for (int i = 0; i < n; ++i) {
     // Eq. (class_est): P(L=1|x) = (1 + Γ1) / (2 + Γ0 + Γ1), or calibrated
-    // σ(τ log((B + Γ1)/(B + Γ0))); 0.5 with no component.
-    result.relevance[i] =
-        std::exp(LogSigmoid(temperature_ * LogOdds(log_gamma[1][i], log_gamma[0][i], log_pseudo[i])));
+    // ε/2 + (1 − ε)σ(τ log((B/(n+1) + Γ1)/(B/(n+1) + Γ0))); 0.5 with no component.
+    result.relevance[i] = std::exp(LogCalibratedProbability(
+        LogOdds(log_gamma[1][i], log_gamma[0][i], log_pseudo[i]), calibration_));
     const double class_log_gamma = log_gamma[nearest_class[i]][i];
     result.nearest_log_membership[i] = class_log_gamma == kNegativeInfinity
                                            ? kNegativeInfinity

@@ -63,6 +63,8 @@ CmmSnapshot CollaborativeMixtureModels::Snapshot() const {
   s.splits = splits_;
   s.merges = merges_;
   s.prior_pseudo_samples = prior_.pseudo_samples;
+  s.temperature = calibration_.temperature;
+  s.label_noise = calibration_.label_noise;
   return s;
 }
 
@@ -89,8 +91,8 @@ StatusOr<CollaborativeMixtureModels> CollaborativeMixtureModels::Restore(const C
 
   // The prior is a function of the dataset and its size: recomputed, not stored.
   if (model.config_.covariance == CovarianceEstimate::kPooledPrior && n > 0) {
-    model.prior_ = ComputeCovariancePrior(model.data_, PriorSampleCount(static_cast<int>(n)),
-                                          model.config_);
+    model.prior_ =
+        ComputeCovariancePrior(model.data_, PriorSampleCount(static_cast<int>(n)), model.config_);
     if (!(s.prior_pseudo_samples > 0.0) || !std::isfinite(s.prior_pseudo_samples)) {
       return DataLossError("snapshot has no valid prior pseudo-sample count");
     }
@@ -112,8 +114,11 @@ StatusOr<CollaborativeMixtureModels> CollaborativeMixtureModels::Restore(const C
   model.random_ = Random::FromState(s.random_state);
   model.splits_ = s.splits;
   model.merges_ = s.merges;
-  // τ too is a function of the model: the same computation as at the end of Add.
-  if (model.config_.prediction == Prediction::kCalibrated && n > 0) model.LogLikelihood();
+  if (!(s.temperature >= 0.0 && s.temperature <= 1.0) ||
+      !(s.label_noise >= 0.0 && s.label_noise <= 0.5)) {
+    return DataLossError("snapshot calibration out of range");
+  }
+  model.calibration_ = {s.temperature, s.label_noise};
   return model;
 }
 

@@ -32,6 +32,10 @@ struct CmmSnapshot {
   // prior's scale is recomputed from the samples, κ cannot be: it was chosen
   // against the model as it stood at the checkpoint.
   double prior_pseudo_samples = 0.0;
+  // The calibration of the prediction (kCalibrated): fitted by an iteration
+  // warm-started from the previous one, so stored rather than refitted.
+  double temperature = 1.0;
+  double label_noise = 0.0;
 };
 
 }  // namespace relmap::cmm

@@ -229,11 +229,11 @@ class Run {
         R"("test":{},"latency_us":{{"update":{},"predict":{},"choice":{}}},"curve":[{}]}})",
         cmm::VariantName(options_.config.variant), cmm::ConfigurationName(options_.config),
         options_.config.alpha, options_.config.regularization, model_.temperature(),
-        options_.config.seed, options_.active ? "active" : "online",
-        model_.dimension(), model_.sample_count(0), model_.sample_count(1),
-        model_.component_count(0), model_.component_count(1), model_.splits(), model_.merges(),
-        Number(model_.LogLikelihood()), test, LatencyJson(update_.Summarise()),
-        LatencyJson(predict.Summarise()), LatencyJson(choice_.Summarise()), curve);
+        options_.config.seed, options_.active ? "active" : "online", model_.dimension(),
+        model_.sample_count(0), model_.sample_count(1), model_.component_count(0),
+        model_.component_count(1), model_.splits(), model_.merges(), Number(model_.LogLikelihood()),
+        test, LatencyJson(update_.Summarise()), LatencyJson(predict.Summarise()),
+        LatencyJson(choice_.Summarise()), curve);
   }
 
  private:

@@ -16,9 +16,9 @@ inline constexpr std::string_view kDefaultLearners =
 
 // A fresh learner for samples of `dimension` values. A CMM name is passed to
 // cmm::ParseConfiguration as it is ("corrected", "corrected:acceptance=training"),
-// so that variants and options added to the classifier need no change here; `alpha1` is `corrected` with α = 1 (no split, no merge: one
-// Gaussian per class, the paper's ablation). CMMs draw from `seed`. An unknown
-// name → INVALID_ARGUMENT.
+// so that variants and options added to the classifier need no change here; `alpha1` is `corrected`
+// with α = 1 (no split, no merge: one Gaussian per class, the paper's ablation). CMMs draw from
+// `seed`. An unknown name → INVALID_ARGUMENT.
 StatusOr<std::unique_ptr<OnlineLearner>> MakeLearner(std::string_view name, int dimension,
                                                      std::uint64_t seed);
 

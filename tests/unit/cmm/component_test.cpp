@@ -77,7 +77,8 @@ TEST(Component, LogDensityMatchesTheClosedFormIn48d) {
 TEST(Component, SingleSampleUsesTheUnitCovariance) {
   // G(s, I): log G(x) = −‖x − s‖²/2 − (p/2) log 2π.
   const Dataset data = MakeDataset({{1, 2, 3}});
-  const Component c = Component::FromSamples(0, {{0}}, data, CmmConfig::ForVariant(Variant::kCorrectedV1));
+  const Component c =
+      Component::FromSamples(0, {{0}}, data, CmmConfig::ForVariant(Variant::kCorrectedV1));
   const Eigen::Vector3d x(1, 2, 5);
   EXPECT_EQ(c.shape(), Component::Shape::kUnit);
   EXPECT_DOUBLE_EQ(c.SquaredMahalanobis(x), 4.0);
@@ -121,7 +122,8 @@ TEST(Component, BatchDistancesEqualSinglePointDistancesBitForBit) {
     for (int k = 0; k < 48; ++k) x[k] = random.UniformUnit();
     data.Append(x, 0);
   }
-  const Component c = Component::FromSamples(0, AllIndices(data), data, CmmConfig::ForVariant(Variant::kCorrectedV1));
+  const Component c = Component::FromSamples(0, AllIndices(data), data,
+                                             CmmConfig::ForVariant(Variant::kCorrectedV1));
   std::vector<double> batch(70);
   c.SquaredMahalanobis(data.data(), 70, data.stride(), batch.data());
   for (int i = 0; i < 70; ++i) EXPECT_EQ(batch[i], c.SquaredMahalanobis(data.sample(i)));

@@ -62,7 +62,8 @@ TEST(Paper2018Switches, PseudoDensityMakesSmallComponentsHitsOfDensityOne) {
   auto paper = CollaborativeMixtureModels::Create(
                    With([](Paper2018Switches& s) { s.pseudo_density = true; }), 2)
                    .value();
-  auto corrected = CollaborativeMixtureModels::Create(CmmConfig::ForVariant(Variant::kCorrectedV1), 2).value();
+  auto corrected =
+      CollaborativeMixtureModels::Create(CmmConfig::ForVariant(Variant::kCorrectedV1), 2).value();
   for (double x : {0.0, 2.0, 4.0}) {
     ASSERT_TRUE(paper.Add(Eigen::Vector2d(x, 0), 1).ok());
     ASSERT_TRUE(corrected.Add(Eigen::Vector2d(x, 0), 1).ok());
@@ -77,7 +78,8 @@ TEST(Paper2018Switches, FirstSampleMeanCentresSmallComponentsOnTheirFirstSample)
   auto paper = CollaborativeMixtureModels::Create(
                    With([](Paper2018Switches& s) { s.first_sample_mean = true; }), 2)
                    .value();
-  auto corrected = CollaborativeMixtureModels::Create(CmmConfig::ForVariant(Variant::kCorrectedV1), 2).value();
+  auto corrected =
+      CollaborativeMixtureModels::Create(CmmConfig::ForVariant(Variant::kCorrectedV1), 2).value();
   for (double x : {0.0, 2.0, 4.0}) {
     ASSERT_TRUE(paper.Add(Eigen::Vector2d(x, 0), 1).ok());
     ASSERT_TRUE(corrected.Add(Eigen::Vector2d(x, 0), 1).ok());
@@ -162,7 +164,8 @@ TEST(Paper2018Switches, TruncatedRecheckStopsAtAClassWithOneComponent) {
 
 TEST(Paper2018Switches, SkipLikelihoodCheckAcceptsWithoutEvaluatingCandidates) {
   const auto data = testing::Problem(datasets::Problem::kXorBlobs, 400, 2, 31);
-  auto checked = CollaborativeMixtureModels::Create(CmmConfig::ForVariant(Variant::kCorrectedV1), 2).value();
+  auto checked =
+      CollaborativeMixtureModels::Create(CmmConfig::ForVariant(Variant::kCorrectedV1), 2).value();
   auto unchecked = CollaborativeMixtureModels::Create(
                        With([](Paper2018Switches& s) { s.skip_likelihood_check = true; }), 2)
                        .value();
