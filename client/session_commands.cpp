@@ -1,6 +1,8 @@
 // relmap session create|list|show|delete|export|import.
 #include <google/protobuf/util/json_util.h>
 
+#include <cctype>
+
 #include "cli_commands.h"
 #include "tools/command_line.h"
 
@@ -10,6 +12,20 @@ namespace {
 bool EndsWith(const std::string& text, const std::string& suffix) {
   return text.size() >= suffix.size() &&
          text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The proto enum value named PREFIX + upper(--flag's value): the CLI's names are the API's
+// ("raw_points" is FPFH_SCHEME_RAW_POINTS). UNSPECIFIED is not a choice.
+template <typename Enum>
+Enum EnumFlag(const CommandLine& args, const std::string& flag, const std::string& prefix,
+              bool (*parse)(const std::string&, Enum*), const std::string& choices) {
+  std::string name = args.Get(flag);
+  for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  Enum value{};
+  if (name == "UNSPECIFIED" || !parse(prefix + name, &value)) {
+    UsageError("--" + flag + " is " + choices + ", not '" + args.Get(flag) + "'");
+  }
+  return value;
 }
 
 // --config (a SessionConfig in JSON) first, then the single-value flags over it.
@@ -32,6 +48,18 @@ v1::SessionConfig ConfigFrom(const CommandLine& args) {
                                                  : v1::CLASSIFIER_VARIANT_CORRECTED);
   }
   if (args.Has("alpha")) config.mutable_classifier()->set_alpha(args.Number("alpha"));
+  v1::FeatureConfig* features = config.mutable_features();
+  if (args.Has("colour")) {
+    features->set_colour(EnumFlag(args, "colour", "COLOUR_VARIANT_", &v1::ColourVariant_Parse,
+                                  "corrected or paper2018"));
+  }
+  if (args.Has("fpfh")) {
+    features->set_fpfh_scheme(EnumFlag(args, "fpfh", "FPFH_SCHEME_", &v1::FpfhScheme_Parse,
+                                       "shared_voxels, exact_union or raw_points"));
+  }
+  if (args.Has("fpfh-radius")) {
+    features->set_fpfh_radius(static_cast<float>(args.Number("fpfh-radius")));
+  }
   if (args.Has("seed")) config.set_seed(static_cast<std::uint64_t>(args.Number("seed")));
   if (args.Has("feature-dimension")) {
     config.set_feature_dimension(static_cast<std::uint32_t>(args.Number("feature-dimension")));
@@ -66,7 +94,9 @@ v1::SessionState ReadState(const std::string& path) {
 int RunSessionCommand(const std::string& verb, const CommandLine& args) {
   const std::unique_ptr<RelevanceClient> client = ClientFrom(args);
   if (verb == "create") {
-    args.Expect({"variant", "alpha", "seed", "feature-dimension", "config"}, 0);
+    args.Expect({"variant", "alpha", "seed", "feature-dimension", "colour", "fpfh", "fpfh-radius",
+                 "config"},
+                0);
     SessionHandle created;
     v1::CreateSessionResponse response;
     return PrintAnswer(client->CreateSession(ConfigFrom(args), &created, &response), response);

@@ -14,8 +14,8 @@
 
 namespace relmap::perception {
 
-FeatureMatrix ComputeFeatures(const Segmentation& segmentation, const FeatureConfig& config,
-                              int threads) {
+FeatureMatrix ComputeFeatures(const Cloud& cloud, const Segmentation& segmentation,
+                              const FeatureConfig& config, int threads) {
 #ifdef _OPENMP
   if (threads <= 0) threads = omp_get_max_threads();
 #endif
@@ -36,8 +36,7 @@ FeatureMatrix ComputeFeatures(const Segmentation& segmentation, const FeatureCon
       f.values.row(s).head<kColourDims>() = ColourHistogram(colours, config.colour).transpose();
     }
   }
-  f.values.rightCols<kFpfhDims>() =
-      SupervoxelFpfh(segmentation, config.fpfh_scheme, config.fpfh_radius, threads);
+  f.values.rightCols<kFpfhDims>() = SupervoxelFpfh(cloud, segmentation, config, threads);
   f.non_finite.assign(svs.size(), 0);
   for (Eigen::Index s = 0; s < n; ++s) {
     for (Eigen::Index d = 0; d < kFeatureDims; ++d) {

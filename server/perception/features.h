@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "perception/cloud.h"
 #include "perception/perception_config.h"
 #include "perception/supervoxels.h"
 
@@ -21,7 +22,8 @@ struct FeatureMatrix {
   std::size_t non_finite_rows = 0;
 };
 
-FeatureMatrix ComputeFeatures(const Segmentation& segmentation, const FeatureConfig& config,
-                              int threads);
+// `cloud` is the cloud `segmentation` was extracted from (the raw-point FPFH reads it).
+FeatureMatrix ComputeFeatures(const Cloud& cloud, const Segmentation& segmentation,
+                              const FeatureConfig& config, int threads);
 
 }  // namespace relmap::perception

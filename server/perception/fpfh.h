@@ -1,10 +1,12 @@
-// The 33 FPFH values of each supervoxel's feature (ALGORITHMS.md §2), in two schemes: the
-// exact per-union computation and the shared per-voxel one (perception_config.h).
+// The 33 FPFH values of each supervoxel's feature (ALGORITHMS.md §2), in three schemes: the
+// exact per-union computation, the shared per-voxel one and the per-raw-point one
+// (perception_config.h).
 #pragma once
 
 #include <Eigen/Core>
 #include <vector>
 
+#include "perception/cloud.h"
 #include "perception/pair_features.h"
 #include "perception/perception_config.h"
 #include "perception/supervoxels.h"
@@ -19,18 +21,21 @@ namespace relmap::perception {
 Eigen::MatrixXf PointFpfh(const std::vector<Eigen::Vector3f>& positions,
                           const std::vector<Eigen::Vector3f>& normals, float radius, int threads);
 
-// N x 33: per supervoxel, the mean of the voxel FPFH (divided by 100) over the voxels of the
-// supervoxel and of its neighbours. Voxels whose VCCS normal is not finite (a voxel with
-// fewer than three voxels around it) are left out; a supervoxel whose union has none left
-// gets a NaN row, which the frame counts as non-finite.
-Eigen::MatrixXd SupervoxelFpfh(const Segmentation& segmentation, FpfhScheme scheme, float radius,
-                               int threads);
+// N x 33: per supervoxel, the mean of the point FPFH (divided by 100) over the points of the
+// supervoxel and of its neighbours, the points being voxels or raw points by `config`'s
+// scheme; `cloud` is the cloud `segmentation` was extracted from. Points whose VCCS normal
+// is not finite (a voxel with fewer than three voxels around it) are left out; a supervoxel
+// whose union has none left gets a NaN row, which the frame counts as non-finite.
+Eigen::MatrixXd SupervoxelFpfh(const Cloud& cloud, const Segmentation& segmentation,
+                               const FeatureConfig& config, int threads);
 
-// The two schemes behind SupervoxelFpfh.
+// The three schemes behind SupervoxelFpfh.
 Eigen::MatrixXd SupervoxelFpfhExactUnion(const Segmentation& segmentation, float radius,
                                          int threads);
 Eigen::MatrixXd SupervoxelFpfhSharedVoxels(const Segmentation& segmentation, float radius,
                                            int threads);
+Eigen::MatrixXd SupervoxelFpfhRawPoints(const Cloud& cloud, const Segmentation& segmentation,
+                                        const FeatureConfig& config, int threads);
 
 // The voxels of `supervoxel` and its neighbours with a finite normal.
 void CollectUnionVoxels(const Segmentation& segmentation, const Supervoxel& supervoxel,

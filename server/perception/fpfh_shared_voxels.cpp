@@ -161,11 +161,17 @@ void CollectUnionVoxels(const Segmentation& segmentation, const Supervoxel& supe
   for (std::uint32_t nb : supervoxel.neighbours) add(segmentation.supervoxels[nb]);
 }
 
-Eigen::MatrixXd SupervoxelFpfh(const Segmentation& segmentation, FpfhScheme scheme, float radius,
-                               int threads) {
-  return scheme == FpfhScheme::kExactUnion
-             ? SupervoxelFpfhExactUnion(segmentation, radius, threads)
-             : SupervoxelFpfhSharedVoxels(segmentation, radius, threads);
+Eigen::MatrixXd SupervoxelFpfh(const Cloud& cloud, const Segmentation& segmentation,
+                               const FeatureConfig& config, int threads) {
+  switch (config.fpfh_scheme) {
+    case FpfhScheme::kExactUnion:
+      return SupervoxelFpfhExactUnion(segmentation, config.fpfh_radius, threads);
+    case FpfhScheme::kRawPoints:
+      return SupervoxelFpfhRawPoints(cloud, segmentation, config, threads);
+    case FpfhScheme::kSharedVoxels:
+      break;
+  }
+  return SupervoxelFpfhSharedVoxels(segmentation, config.fpfh_radius, threads);
 }
 
 }  // namespace relmap::perception

@@ -17,7 +17,8 @@ StatusOr<Frame> BuildFrame(Cloud cloud, const PerceptionConfig& config) {
   frame.timings.supervoxels_ms = frame.segmentation.supervoxels_ms;
   frame.timings.normals_ms = frame.segmentation.normals_ms;
   const auto features_start = std::chrono::steady_clock::now();
-  frame.features = ComputeFeatures(frame.segmentation, config.features, config.threads);
+  frame.features =
+      ComputeFeatures(frame.cloud, frame.segmentation, config.features, config.threads);
   const auto end = std::chrono::steady_clock::now();
   frame.timings.features_ms =
       std::chrono::duration<double, std::milli>(end - features_start).count();

@@ -46,7 +46,19 @@ Status Validate(const PerceptionConfig& config) {
   if (Status st = ValidateCrop(s.crop); !st.ok()) return st;
 
   const FeatureConfig& f = config.features;
-  if (!Positive(f.fpfh_radius)) return Field("features.fpfh_radius", "> 0");
+  // Below 5 mm a ball meets too few voxels for a histogram (8 mm voxels); beyond 0.5 m one
+  // radius search spans the whole workbench and a frame takes minutes.
+  if (!(f.fpfh_radius >= kMinFpfhRadius && f.fpfh_radius <= kMaxFpfhRadius)) {
+    return Field("features.fpfh_radius", "in [0.005, 0.5] m");
+  }
+  // GridCellKey's 21 bits per axis hold ±100 m at 0.1 mm cells.
+  if (!(f.raw_point_spacing == 0.0f ||
+        (f.raw_point_spacing >= 1e-4f && f.raw_point_spacing < f.fpfh_radius))) {
+    return Field("features.raw_point_spacing", "0 or in [0.0001, fpfh_radius) m");
+  }
+  if (!NonNegative(f.raw_normal_radius) || f.raw_normal_radius > f.fpfh_radius) {
+    return Field("features.raw_normal_radius", "in [0, fpfh_radius] m");
+  }
   if (!NonNegative(f.zero_below) || f.zero_below >= 1.0) {
     return Field("features.zero_below", "in [0, 1)");
   }
@@ -79,14 +91,24 @@ StatusOr<ColourConversion> ParseColourConversion(std::string_view name) {
 }
 
 std::string_view FpfhSchemeName(FpfhScheme scheme) {
-  return scheme == FpfhScheme::kExactUnion ? "exact" : "shared";
+  switch (scheme) {
+    case FpfhScheme::kExactUnion:
+      return "exact_union";
+    case FpfhScheme::kRawPoints:
+      return "raw_points";
+    case FpfhScheme::kSharedVoxels:
+      break;
+  }
+  return "shared_voxels";
 }
 
 StatusOr<FpfhScheme> ParseFpfhScheme(std::string_view name) {
-  if (name == "exact") return FpfhScheme::kExactUnion;
-  if (name == "shared") return FpfhScheme::kSharedVoxels;
+  // "exact" and "shared": the names before raw_points existed, still in scripts and READMEs.
+  if (name == "exact_union" || name == "exact") return FpfhScheme::kExactUnion;
+  if (name == "shared_voxels" || name == "shared") return FpfhScheme::kSharedVoxels;
+  if (name == "raw_points") return FpfhScheme::kRawPoints;
   return InvalidArgumentError("unknown FPFH scheme '" + std::string(name) +
-                              "' (expected exact or shared)");
+                              "' (expected shared_voxels, exact_union or raw_points)");
 }
 
 }  // namespace relmap::perception

@@ -58,13 +58,30 @@ enum class FpfhScheme {
   // union average. Differs from kExactUnion only near the union's border; the deviation is
   // measured by the tests and benchmarks.
   kSharedVoxels,
+  // The paper's words (§2 of the paper: "on the raw points"): per supervoxel, FPFH at the raw
+  // input points of the supervoxel ∪ its neighbours, that union as search surface, normals
+  // estimated from the raw points. A 5 cm ball holds thousands of raw points, so the points
+  // are first thinned to one per raw_point_spacing cell (docs/features.md).
+  kRawPoints,
 };
+
+// The accepted FPFH radii, in metres (Validate).
+inline constexpr float kMinFpfhRadius = 0.005f;
+inline constexpr float kMaxFpfhRadius = 0.5f;
 
 // §2: 15 colour-histogram values then 33 FPFH values per supervoxel.
 struct FeatureConfig {
   ColourConversion colour = ColourConversion::kCorrected;
   FpfhScheme fpfh_scheme = FpfhScheme::kSharedVoxels;
   float fpfh_radius = 0.05f;
+  // kRawPoints only: at most one raw point (the first in input order, not an average) per
+  // cell of this size in metres; 0 keeps every raw point (tens of seconds per frame).
+  float raw_point_spacing = 0.004f;
+  // kRawPoints only: the normal of each raw point is the PCA normal of the thinned raw points
+  // within this radius in metres; 0 gives it the VCCS normal of its voxel instead. VCCS
+  // normals are constant over a voxel, which keeps the angle blocks as peaked as the voxel
+  // schemes'; 1 cm raw normals carry the sensor noise the paper's FPFH saw (docs/features.md).
+  float raw_normal_radius = 0.01f;
   // Values below this are set to 0 (the authors' code from Feb. 2018 on).
   double zero_below = 1e-3;
 };

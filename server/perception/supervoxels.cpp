@@ -12,6 +12,8 @@
 #include <map>
 #include <unordered_map>
 
+#include "perception/grid_cell.h"
+
 namespace relmap::perception {
 namespace {
 
@@ -62,14 +64,7 @@ VccsInput Prevoxelise(const PclCloud& input, const CropBox& crop, float resoluti
   for (std::size_t i = 0; i < input.size(); ++i) {
     const pcl::PointXYZRGBA& p = input[i];
     if (!pcl::isFinite(p) || !InCrop(p, crop)) continue;
-    // Coordinates are bounded (DecodeLimits::max_abs_coordinate), so 21 bits per axis hold
-    // any cell index at 8 mm.
-    const auto cell = [&](float v) {
-      return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv)) +
-                                        (1 << 20)) &
-             0x1fffff;
-    };
-    const std::uint64_t key = cell(p.x) | (cell(p.y) << 21) | (cell(p.z) << 42);
+    const std::uint64_t key = GridCellKey(p.x, p.y, p.z, inv);
     auto [it, inserted] = cell_index.try_emplace(key, static_cast<std::int32_t>(sums.size()));
     if (inserted) sums.emplace_back();
     Sum& s = sums[static_cast<std::size_t>(it->second)];

@@ -1,9 +1,66 @@
 // Field-by-field mapping; unset optional fields keep the paper's defaults.
 #include "service/config_mapping.h"
 
+#include <string>
+
 #include "perception/decode.h"
 
 namespace relmap::service {
+namespace {
+
+// proto3 enums are open: a client may send any number, which must not become a default.
+StatusOr<perception::FeatureConfig> FeaturesFromProto(const v1::FeatureConfig& in) {
+  perception::FeatureConfig out;
+  switch (in.colour()) {
+    case v1::COLOUR_VARIANT_UNSPECIFIED:
+    case v1::COLOUR_VARIANT_CORRECTED:
+      out.colour = perception::ColourConversion::kCorrected;
+      break;
+    case v1::COLOUR_VARIANT_PAPER2018:
+      out.colour = perception::ColourConversion::kPaper2018;
+      break;
+    default:
+      return InvalidArgumentError("config.features.colour: unknown value " +
+                                  std::to_string(in.colour()));
+  }
+  switch (in.fpfh_scheme()) {
+    case v1::FPFH_SCHEME_UNSPECIFIED:
+    case v1::FPFH_SCHEME_SHARED_VOXELS:
+      out.fpfh_scheme = perception::FpfhScheme::kSharedVoxels;
+      break;
+    case v1::FPFH_SCHEME_EXACT_UNION:
+      out.fpfh_scheme = perception::FpfhScheme::kExactUnion;
+      break;
+    case v1::FPFH_SCHEME_RAW_POINTS:
+      out.fpfh_scheme = perception::FpfhScheme::kRawPoints;
+      break;
+    default:
+      return InvalidArgumentError("config.features.fpfh_scheme: unknown value " +
+                                  std::to_string(in.fpfh_scheme()));
+  }
+  if (in.has_fpfh_radius()) out.fpfh_radius = in.fpfh_radius();
+  return out;
+}
+
+void FeaturesToProto(const perception::FeatureConfig& in, v1::FeatureConfig* out) {
+  out->set_colour(in.colour == perception::ColourConversion::kPaper2018
+                      ? v1::COLOUR_VARIANT_PAPER2018
+                      : v1::COLOUR_VARIANT_CORRECTED);
+  switch (in.fpfh_scheme) {
+    case perception::FpfhScheme::kExactUnion:
+      out->set_fpfh_scheme(v1::FPFH_SCHEME_EXACT_UNION);
+      break;
+    case perception::FpfhScheme::kRawPoints:
+      out->set_fpfh_scheme(v1::FPFH_SCHEME_RAW_POINTS);
+      break;
+    case perception::FpfhScheme::kSharedVoxels:
+      out->set_fpfh_scheme(v1::FPFH_SCHEME_SHARED_VOXELS);
+      break;
+  }
+  out->set_fpfh_radius(in.fpfh_radius);
+}
+
+}  // namespace
 
 StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& config) {
   session::SessionSettings settings;
@@ -42,6 +99,9 @@ StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& co
   if (cd.has_icp_max_iterations()) change.icp_max_iterations = cd.icp_max_iterations();
   if (cd.has_icp_max_correspondence()) change.icp_max_correspondence = cd.icp_max_correspondence();
   if (cd.has_max_fitness()) change.max_fitness = cd.max_fitness();
+  StatusOr<perception::FeatureConfig> features = FeaturesFromProto(config.features());
+  if (!features.ok()) return features.status();
+  settings.perception.features = *features;
   if (config.feature_dimension() != 0) {
     settings.feature_dimension =
         static_cast<int>(std::min<std::uint32_t>(config.feature_dimension(), 1u << 20));
@@ -82,6 +142,7 @@ v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings) {
   cd->set_icp_max_iterations(change.icp_max_iterations);
   cd->set_icp_max_correspondence(change.icp_max_correspondence);
   cd->set_max_fitness(change.max_fitness);
+  FeaturesToProto(settings.perception.features, config.mutable_features());
   config.set_seed(settings.classifier.seed);
   config.set_feature_dimension(static_cast<std::uint32_t>(settings.feature_dimension));
   return config;

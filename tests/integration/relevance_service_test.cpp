@@ -17,6 +17,7 @@
 #include <iterator>
 #include <numeric>
 #include <thread>
+#include <vector>
 
 #include "integration/server_process.h"
 #include "integration/test_support.h"
@@ -249,6 +250,69 @@ TEST_F(RelevanceServer, BadCloudsAreInvalidArguments) {
   EXPECT_EQ(ComputeMaps(id, token, holes, &maps).error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_EQ(ComputeMaps(id, token, v1::Cloud{}, &maps).error_code(),
             grpc::StatusCode::INVALID_ARGUMENT);
+}
+
+// The features a session learned from a pushed supervoxel, as ExportSession returns them.
+std::vector<double> LearnedFeature(RelevanceService::Stub& stub, const std::string& id,
+                                   const std::string& token) {
+  grpc::ClientContext context;
+  context.AddMetadata("authorization", "Bearer " + token);
+  v1::ExportSessionRequest request;
+  request.set_session_id(id);
+  v1::ExportSessionResponse response;
+  const grpc::Status status = stub.ExportSession(&context, request, &response);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  if (response.state().samples_size() != 1) return {};
+  const auto& values = response.state().samples(0).feature().values();
+  return {values.begin(), values.end()};
+}
+
+// The session's FeatureConfig reaches ComputeMaps: the same supervoxel of the same cloud is
+// learned with other colour values (paper2018 conversion) and other FPFH values (raw points)
+// than in a default session.
+TEST_F(RelevanceServer, FeatureSettingsAreReportedAndChangeTheLearnedFeatures) {
+  v1::SessionConfig paper;
+  paper.mutable_features()->set_colour(v1::COLOUR_VARIANT_PAPER2018);
+  paper.mutable_features()->set_fpfh_scheme(v1::FPFH_SCHEME_RAW_POINTS);
+  const auto [paper_id, paper_token] = Create(paper);
+  const auto [default_id, default_token] = Create();
+
+  grpc::ClientContext get_context;
+  Authorise(get_context, paper_token);
+  v1::GetSessionRequest get;
+  get.set_session_id(paper_id);
+  v1::GetSessionResponse session;
+  ASSERT_TRUE(stub_->GetSession(&get_context, get, &session).ok());
+  EXPECT_EQ(session.config().features().colour(), v1::COLOUR_VARIANT_PAPER2018);
+  EXPECT_EQ(session.config().features().fpfh_scheme(), v1::FPFH_SCHEME_RAW_POINTS);
+  EXPECT_FLOAT_EQ(session.config().features().fpfh_radius(), 0.05f);
+
+  std::vector<double> learned[2];
+  const std::pair<std::string, std::string> sessions[2] = {{paper_id, paper_token},
+                                                           {default_id, default_token}};
+  for (int s = 0; s < 2; ++s) {
+    v1::ComputeMapsResponse maps;
+    ASSERT_TRUE(ComputeMaps(sessions[s].first, sessions[s].second, PackedTabletop(), &maps).ok());
+    ASSERT_GT(maps.supervoxels_size(), 0);
+    EXPECT_EQ(maps.unusable_supervoxels(), 0u);
+    v1::PostOutcomeResponse posted;
+    ASSERT_TRUE(Post(sessions[s].first, sessions[s].second, maps.frame_id(), 0, v1::LABEL_MOVEABLE,
+                     "push-0", &posted)
+                    .ok());
+    learned[s] = LearnedFeature(*stub_, sessions[s].first, sessions[s].second);
+    ASSERT_EQ(learned[s].size(), 48u);
+  }
+  // Same segmentation (same supervoxel settings), so supervoxel 0 is the same in both.
+  const auto differs = [&](int first, int count) {
+    for (int d = first; d < first + count; ++d) {
+      if (learned[0][static_cast<std::size_t>(d)] != learned[1][static_cast<std::size_t>(d)]) {
+        return true;
+      }
+    }
+    return false;
+  };
+  EXPECT_TRUE(differs(0, 15)) << "colour histogram";
+  EXPECT_TRUE(differs(15, 33)) << "FPFH";
 }
 
 TEST_F(RelevanceServer, FeatureSessionsLearnRawVectors) {

@@ -33,6 +33,12 @@ check wrong-token-exit-1 test "$(exit_code "$cli" session show "$session" --toke
 check wrong-token-message grep -q 'wrong token' <<<"$("$cli" session show "$session" --token nope 2>&1)"
 check unknown-flag-exit-2 test "$(exit_code "$cli" session show "$session" --colour red)" = 2
 check missing-session-exit-2 test "$(exit_code "$cli" session show)" = 2
+paper=$("$cli" session create --colour paper2018 --fpfh raw_points --fpfh-radius 0.04)
+check features-colour grep -q '"colour":"COLOUR_VARIANT_PAPER2018"' <<<"$paper"
+check features-fpfh grep -q '"fpfhScheme":"FPFH_SCHEME_RAW_POINTS"' <<<"$paper"
+check features-radius grep -q '"fpfhRadius":0.04' <<<"$paper"
+check unknown-fpfh-exit-2 test "$(exit_code "$cli" session create --fpfh fast)" = 2
+check unspecified-colour-exit-2 test "$(exit_code "$cli" session create --colour unspecified)" = 2
 
 {
   echo "label,f1,f2"

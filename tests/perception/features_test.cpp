@@ -1,11 +1,13 @@
 // The 48-d feature of §2: colour conversions, histogram invariants, FPFH against PCL, and
-// the deviation of the shared FPFH scheme from the exact one.
+// the deviation of the shared FPFH scheme from the exact one, the raw-point scheme.
 #include "perception/features.h"
 
 #include <gtest/gtest.h>
 #include <pcl/features/fpfh.h>
 #include <pcl/point_types.h>
 #include <pcl/search/kdtree.h>
+
+#include <string>
 
 #include "perception/colour_histogram.h"
 #include "perception/fpfh.h"
@@ -63,7 +65,9 @@ void ExpectInvariants(const FeatureMatrix& f) {
 
 TEST(Features, SubHistogramsSumToOneAndValuesLieInTheUnitInterval) {
   const SyntheticTabletop scene = testing::SmallSyntheticScene();
-  for (FpfhScheme scheme : {FpfhScheme::kSharedVoxels, FpfhScheme::kExactUnion}) {
+  for (FpfhScheme scheme :
+       {FpfhScheme::kSharedVoxels, FpfhScheme::kExactUnion, FpfhScheme::kRawPoints}) {
+    SCOPED_TRACE(std::string(FpfhSchemeName(scheme)));
     PerceptionConfig config;
     config.features.fpfh_scheme = scheme;
     StatusOr<Frame> frame = BuildFrame(scene.cloud, config);
@@ -80,14 +84,23 @@ TEST(Features, InvariantsHoldOnARealCloud) {
   ExpectInvariants(frame->features);
 }
 
+TEST(Features, RawPointFpfhIsFiniteOnARealCloud) {
+  RELMAP_LOAD_REAL_CLOUD(cloud, "table_scene_mug_stereo_textured.pcd");
+  PerceptionConfig config;
+  config.features.fpfh_scheme = FpfhScheme::kRawPoints;
+  StatusOr<Frame> frame = BuildFrame(cloud, config);
+  ASSERT_TRUE(frame.ok()) << frame.status().message();
+  ExpectInvariants(frame->features);
+}
+
 TEST(Features, ColourConversionChangesOnlyTheColourBlock) {
   const SyntheticTabletop scene = testing::SmallSyntheticScene();
   StatusOr<Segmentation> seg = ExtractSupervoxels(scene.cloud, SupervoxelConfig{});
   ASSERT_TRUE(seg.ok());
   FeatureConfig corrected, paper;
   paper.colour = ColourConversion::kPaper2018;
-  const FeatureMatrix a = ComputeFeatures(*seg, corrected, 2);
-  const FeatureMatrix b = ComputeFeatures(*seg, paper, 2);
+  const FeatureMatrix a = ComputeFeatures(scene.cloud, *seg, corrected, 2);
+  const FeatureMatrix b = ComputeFeatures(scene.cloud, *seg, paper, 2);
   EXPECT_TRUE(a.values.rightCols<kFpfhDims>() == b.values.rightCols<kFpfhDims>());
   EXPECT_FALSE(a.values.leftCols<kColourDims>() == b.values.leftCols<kColourDims>());
 }
@@ -140,6 +153,67 @@ TEST(SupervoxelFpfh, SharedSchemeStaysCloseToTheExactOne) {
   ::testing::Test::RecordProperty("mean_l1", std::to_string(l1.mean()));
   ::testing::Test::RecordProperty("max_l1", std::to_string(l1.maxCoeff()));
   EXPECT_LT(l1.mean(), 0.25);
+}
+
+// A tilted plane z = 1 + 0.1 x of 4 mm spaced points, 24 cm square, seen from the origin.
+Cloud TiltedPlane() {
+  std::vector<CloudPoint> points;
+  constexpr int kSide = 60;
+  for (int v = 0; v < kSide; ++v) {
+    for (int u = 0; u < kSide; ++u) {
+      const float x = -0.12f + 0.004f * static_cast<float>(u);
+      const float y = -0.12f + 0.004f * static_cast<float>(v);
+      points.push_back({x, y, 1.0f + 0.1f * x, 128, 128, 128, 255});
+    }
+  }
+  StatusOr<Cloud> cloud = MakeCloud(kSide, kSide, std::move(points));
+  EXPECT_TRUE(cloud.ok()) << cloud.status().message();
+  return cloud.ok() ? *cloud : Cloud();
+}
+
+// The raw scheme is PointFpfh at the raw points of each union, that union as search surface,
+// averaged. On a plane every normal is the plane's, so every pair lies in the middle bin of
+// each block: f1 = atan2(0, 1) = 0 -> 11 * (0 + π) / 2π = 5.5, f2 = f3 = 0 -> 11 * 0.5 = 5.5.
+TEST(SupervoxelFpfh, RawPointsOnAPlaneAreTheUnionsPointFpfh) {
+  const Cloud cloud = TiltedPlane();
+  StatusOr<Segmentation> seg = ExtractSupervoxels(cloud, SupervoxelConfig{});
+  ASSERT_TRUE(seg.ok()) << seg.status().message();
+  ASSERT_GT(seg->supervoxels.size(), 4u);
+  FeatureConfig config;
+  config.raw_point_spacing = 0.0f;  // every raw point, as PointFpfh below gets them
+  const Eigen::MatrixXd raw = SupervoxelFpfhRawPoints(cloud, *seg, config, 2);
+  const Eigen::Vector3f plane_normal = Eigen::Vector3f(0.1f, 0.0f, -1.0f).normalized();
+  Eigen::RowVectorXd middle = Eigen::RowVectorXd::Zero(kFpfhDims);
+  middle(5) = middle(kFpfhBins + 5) = middle(2 * kFpfhBins + 5) = 1.0;
+  for (const Supervoxel& sv : seg->supervoxels) {
+    std::vector<Eigen::Vector3f> positions;
+    const auto add = [&](const Supervoxel& member) {
+      for (std::int32_t i : member.point_indices) {
+        const CloudPoint p = cloud.point(static_cast<std::size_t>(i));
+        positions.emplace_back(p.x, p.y, p.z);
+      }
+    };
+    add(sv);
+    for (std::uint32_t nb : sv.neighbours) add(seg->supervoxels[nb]);
+    const std::vector<Eigen::Vector3f> normals(positions.size(), plane_normal);
+    const Eigen::RowVectorXd expected =
+        PointFpfh(positions, normals, config.fpfh_radius, 2).cast<double>().colwise().mean();
+    EXPECT_LT((raw.row(sv.id) - expected).cwiseAbs().maxCoeff(), 1e-6) << sv.id;
+    EXPECT_LT((raw.row(sv.id) - middle).cwiseAbs().maxCoeff(), 1e-6) << sv.id;
+  }
+}
+
+TEST(FeatureConfig, RadiiOutsideTheirRangesAreInvalid) {
+  PerceptionConfig config;
+  config.features.fpfh_radius = 0.001f;
+  EXPECT_FALSE(Validate(config).ok());
+  config.features.fpfh_radius = 0.6f;
+  EXPECT_FALSE(Validate(config).ok());
+  config.features.fpfh_radius = 0.05f;
+  config.features.raw_point_spacing = 0.05f;  // one point per ball: no histogram
+  EXPECT_FALSE(Validate(config).ok());
+  config.features.raw_point_spacing = 0.0f;
+  EXPECT_TRUE(Validate(config).ok());
 }
 
 }  // namespace

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 
 #include "perception/synthetic_tabletop.h"
@@ -68,6 +71,33 @@ TEST(Supervoxels, OutputIsConsistent) {
     if (scene.object_of_point[i] < 0) {
       EXPECT_EQ(seg->point_labels[i], -1);  // holes
     }
+  }
+}
+
+// The raw-point FPFH reads the input points through point_indices: with the pre-voxelisation
+// too, they must be the raw points, each within two voxel diagonals of a voxel of its
+// supervoxel (one from its pre-voxel's mean, one from there to VCCS's voxel mean).
+TEST(Supervoxels, PointIndicesAreTheRawPointsWithOrWithoutPrevoxelisation) {
+  const SyntheticTabletop scene = testing::SmallSyntheticScene();
+  for (bool prevoxelise : {true, false}) {
+    SCOPED_TRACE(prevoxelise);
+    SupervoxelConfig config;
+    config.prevoxelise = prevoxelise;
+    StatusOr<Segmentation> seg = ExtractSupervoxels(scene.cloud, config);
+    ASSERT_TRUE(seg.ok());
+    const float bound = 2.0f * std::sqrt(3.0f) * config.voxel_resolution;
+    float worst = 0.0f;
+    for (const Supervoxel& sv : seg->supervoxels) {
+      for (std::int32_t i : sv.point_indices) {
+        const CloudPoint p = scene.cloud.point(static_cast<std::size_t>(i));
+        float nearest = std::numeric_limits<float>::infinity();
+        for (const Voxel& v : sv.voxels) {
+          nearest = std::min(nearest, (v.position - Eigen::Vector3f(p.x, p.y, p.z)).norm());
+        }
+        worst = std::max(worst, nearest);
+      }
+    }
+    EXPECT_LT(worst, bound);
   }
 }
 

@@ -2,8 +2,10 @@
 // its segmentation, or runs the change detector on two clouds.
 //
 //   relmap-perception <cloud.pcd | synthetic:WxH> [--voxel 0.008] [--seed 0.05] [--repeat 5]
-//       [--png seg.png] [--fpfh shared|exact] [--colour corrected|paper2018]
-//       [--no-prevoxelise] [--threads 2] [--fpfh-deviation] [--stride 2]
+//       [--png seg.png] [--fpfh shared_voxels|exact_union|raw_points]
+//       [--colour corrected|paper2018] [--raw-spacing 0.004]
+//       [--raw-normal-radius 0.01] [--no-prevoxelise] [--threads 2]
+//       [--fpfh-deviation] [--feature-stats] [--stride 2]
 //   relmap-perception --change before.pcd after.pcd --target-point x,y,z
 #include <algorithm>
 #include <chrono>
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "perception/change_detector.h"
+#include "perception/colour_histogram.h"
 #include "perception/decode.h"
 #include "perception/fpfh.h"
 #include "perception/frame.h"
@@ -86,6 +89,33 @@ bool DecimatedBytes(const std::string& pcd, std::uint32_t stride, std::uint32_t&
   return true;
 }
 
+// The mean feature over the frame's finite rows, and the largest value of each of its three
+// FPFH blocks: how peaked the frame's FPFH are, comparable with another pipeline's means.
+std::string FeatureStatsJson(const rp::FeatureMatrix& features) {
+  Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(rp::kFeatureDims);
+  std::size_t rows = 0;
+  for (Eigen::Index r = 0; r < features.values.rows(); ++r) {
+    if (features.non_finite[static_cast<std::size_t>(r)] > 0) continue;
+    sum += features.values.row(r);
+    ++rows;
+  }
+  const Eigen::RowVectorXd mean = sum / static_cast<double>(std::max<std::size_t>(rows, 1));
+  std::string json = ",\"mean_feature\":[";
+  char number[32];
+  for (int d = 0; d < rp::kFeatureDims; ++d) {
+    std::snprintf(number, sizeof(number), "%s%.3f", d ? "," : "", mean[d]);
+    json += number;
+  }
+  json += "],\"fpfh_block_max\":[";
+  for (int block = 0; block < 3; ++block) {
+    const double peak =
+        mean.segment(rp::kColourDims + block * rp::kFpfhBins, rp::kFpfhBins).maxCoeff();
+    std::snprintf(number, sizeof(number), "%s%.3f", block ? "," : "", peak);
+    json += number;
+  }
+  return json + "]";
+}
+
 int Change(int argc, char** argv) {
   if (argc != 6 || std::string(argv[4]) != "--target-point") {
     return Fail("usage: relmap-perception --change before.pcd after.pcd --target-point x,y,z");
@@ -128,8 +158,10 @@ int main(int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') {
     return Fail(
         "usage: relmap-perception <cloud.pcd | synthetic:WxH> [--voxel m] [--seed m] "
-        "[--repeat n] [--png file] [--fpfh shared|exact] [--colour corrected|paper2018] "
-        "[--no-prevoxelise] [--threads n] [--fpfh-deviation] [--stride n]\n"
+        "[--repeat n] [--png file] [--fpfh shared_voxels|exact_union|raw_points] "
+        "[--colour corrected|paper2018] [--raw-spacing m] [--raw-normal-radius m] "
+        "[--no-prevoxelise] [--threads n] "
+        "[--fpfh-deviation] [--feature-stats] [--stride n]\n"
         "       relmap-perception --change before.pcd after.pcd --target-point x,y,z");
   }
   const std::string input = argv[1];
@@ -138,6 +170,7 @@ int main(int argc, char** argv) {
   std::uint32_t stride = 1;
   std::string png;
   bool deviation = false;
+  bool feature_stats = false;
   for (int i = 2; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "--no-prevoxelise") {
@@ -146,6 +179,10 @@ int main(int argc, char** argv) {
     }
     if (flag == "--fpfh-deviation") {
       deviation = true;
+      continue;
+    }
+    if (flag == "--feature-stats") {
+      feature_stats = true;
       continue;
     }
     if (i + 1 >= argc) return Fail(flag + " needs a value");
@@ -159,6 +196,10 @@ int main(int argc, char** argv) {
         repeat = std::max(1, std::stoi(value));
       } else if (flag == "--stride") {
         stride = static_cast<std::uint32_t>(std::max(1, std::stoi(value)));
+      } else if (flag == "--raw-spacing") {
+        config.features.raw_point_spacing = std::stof(value);
+      } else if (flag == "--raw-normal-radius") {
+        config.features.raw_normal_radius = std::stof(value);
       } else if (flag == "--threads") {
         config.threads = std::stoi(value);
       } else if (flag == "--png") {
@@ -230,19 +271,24 @@ int main(int argc, char** argv) {
                   l1.maxCoeff(), diff.maxCoeff());
     extra = buffer;
   }
+  if (feature_stats) extra += FeatureStatsJson(last.features);
   // Voxels drive the cost of both stages more than points do (a far table gives one voxel
   // per pixel).
   std::size_t voxels = 0;
   for (const rp::Supervoxel& sv : last.segmentation.supervoxels) voxels += sv.voxels.size();
   std::printf(
       "{\"cloud\":\"%s\",\"stride\":%u,\"points\":%zu,\"valid_points\":%zu,\"voxels\":%zu,"
-      "\"supervoxels\":%zu,\"non_finite_rows\":%zu,\"fpfh\":\"%s\",\"prevoxelise\":%s,\"threads\":%"
+      "\"supervoxels\":%zu,\"non_finite_rows\":%zu,\"fpfh\":\"%s\",\"colour\":\"%s\","
+      "\"raw_spacing\":%g,\"raw_normal_radius\":%g,\"prevoxelise\":%s,\"threads\":%"
       "d,\"repeat\":%d,"
       "\"median_ms\":{\"decode\":%.1f,\"filter\":%.1f,\"supervoxels\":%.1f,\"normals\":%.1f,"
       "\"features\":%.1f,\"total\":%.1f}%s}\n",
       input.c_str(), stride, last.cloud.size(), last.cloud.valid_points(), voxels, last.size(),
       last.features.non_finite_rows,
       std::string(rp::FpfhSchemeName(config.features.fpfh_scheme)).c_str(),
+      std::string(rp::ColourConversionName(config.features.colour)).c_str(),
+      static_cast<double>(config.features.raw_point_spacing),
+      static_cast<double>(config.features.raw_normal_radius),
       config.supervoxels.prevoxelise ? "true" : "false", config.threads, repeat, Median(decode),
       Median(filter), Median(supervoxels), Median(normals), Median(features), Median(total),
       extra.c_str());

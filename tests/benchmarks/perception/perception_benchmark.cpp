@@ -64,7 +64,8 @@ void Features(benchmark::State& state, const Input* in, rp::FpfhScheme scheme, i
   const auto seg = rp::ExtractSupervoxels(in->cloud, rp::SupervoxelConfig{});
   rp::FeatureConfig config;
   config.fpfh_scheme = scheme;
-  for (auto _ : state) benchmark::DoNotOptimize(rp::ComputeFeatures(*seg, config, threads));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(rp::ComputeFeatures(in->cloud, *seg, config, threads));
 }
 
 void WholeFrame(benchmark::State& state, const Input* in, bool naive) {
