@@ -85,15 +85,13 @@ Calibration FitCalibration(std::span<const double> z, const Calibration& start) 
       model_share[i] = model / (model + 0.5 * c.label_noise);
       noise += 1.0 - model_share[i];
     }
-    // M: ε in closed form; for τ one Newton step of the weighted objective,
-    // kept in [0, 1] (a generalised EM step: the likelihood still rises).
+    // M: ε in closed form; τ maximising the weighted objective (bracketed
+    // Newton from the current τ: a bare Newton step overshoots where the
+    // objective is flat, as it is with confident log-odds).
     const Calibration previous = c;
     c.label_noise =
         std::clamp(noise / static_cast<double>(z.size()), kMinLabelNoise, kMaxLabelNoise);
-    const Slope slope = SlopeAt(z, model_share, c.temperature);
-    if (slope.curvature > 0.0) {
-      c.temperature = std::clamp(c.temperature + slope.gradient / slope.curvature, 0.0, 1.0);
-    }
+    c.temperature = FitTemperature(z, model_share, c.temperature);
     if (std::abs(c.label_noise - previous.label_noise) < kEmTolerance &&
         std::abs(c.temperature - previous.temperature) < kEmTolerance) {
       break;

@@ -22,8 +22,8 @@ double LogCalibratedProbability(double log_odds, const Calibration& calibration)
 
 // Towards argmax over τ ∈ [0, 1], ε ∈ [0.001, ½] of Σ_i log(ε/2 + (1 − ε)σ(τ z_i)),
 // where z_i is the log-odds in favour of sample i's own label: at most eight
-// iterations of EM from `start` (ε: the expected share of noise labels; τ: one
-// Newton step of the weighted objective, clamped to [0, 1]), O(n) each.
+// iterations of EM from `start` (ε: the expected share of noise labels; τ: the
+// weighted FitTemperature from the current τ).
 // Deterministic for the same inputs and start.
 Calibration FitCalibration(std::span<const double> log_odds, const Calibration& start);
 

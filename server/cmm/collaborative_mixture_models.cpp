@@ -43,6 +43,7 @@ StatusOr<UpdateReport> CollaborativeMixtureModels::Add(const Eigen::Ref<const Ei
   if (config_.covariance == CovarianceEstimate::kPooledPrior && IsPriorCheckpoint(data_.size())) {
     RefreshPrior();
   }
+  Recalibrate();
   const int sample = data_.size() - 1;
   UpdateReport report;
   report.label = label;
@@ -63,8 +64,8 @@ StatusOr<UpdateReport> CollaborativeMixtureModels::Add(const Eigen::Ref<const Ei
   // Steps 3 and 4.
   SplitOrMerge(label, report.component, report);
   RandomRecheck(report.component, report);
-  // The calibrated prediction's τ belongs to the model as it now is.
-  if (config_.prediction == Prediction::kCalibrated) LogLikelihood();
+  // The calibration belongs to the model as it now is.
+  Recalibrate();
   return report;
 }
 
@@ -93,6 +94,7 @@ void CollaborativeMixtureModels::RefreshPrior() {
   double best = kNegativeInfinity;
   for (const double kappa : kPseudoSampleGrid) {
     refit(kappa);
+    Recalibrate();
     const double criterion = LogLikelihood();
     if (criterion > best) best = criterion, best_kappa = kappa;
   }

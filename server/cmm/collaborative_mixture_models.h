@@ -138,11 +138,24 @@ class CollaborativeMixtureModels {
   // kLeaveOneOut, a sample of the class is evaluated without itself.
   Eigen::VectorXd CriterionClassLogDensity(const std::vector<Component*>& members,
                                            bool stored_weights);
-  // log P(l_i | x_i) of every sample from both classes' criterion densities;
-  // fits the calibration when the prediction is calibrated (from the current
-  // one) and reports it in `calibration`.
-  Eigen::VectorXd SampleLogProbabilities(const std::array<Eigen::VectorXd, 2>& log_gamma,
-                                         Calibration& calibration);
+  // Per sample, the log-odds in favour of its label from both classes'
+  // criterion densities (before calibration).
+  Eigen::VectorXd SampleLogOdds(const std::array<Eigen::VectorXd, 2>& log_gamma);
+  // The calibration that fits `log_odds` best, from the current one; (1, 0)
+  // under the pseudo-count.
+  Calibration FitCalibrationTo(const Eigen::VectorXd& log_odds) const;
+  // log P(l_i | x_i) of every sample from its log-odds.
+  static Eigen::VectorXd SampleLogProbabilities(const Eigen::VectorXd& log_odds,
+                                                const Calibration& calibration);
+  // Fills the criterion's class densities of the current model.
+  void FillClassLogDensities();
+  // Refits the calibration to the current model (kCalibrated): at the start of
+  // every Add, once the sample is in, so that the current model and its
+  // candidates are compared each with its best calibration, and at the end, for
+  // the predictions. The only place calibration_ changes, so that a query of
+  // LogLikelihood() leaves the model as it is (a restored model learns on bit
+  // for bit like the original).
+  void Recalibrate();
 
   CmmConfig config_;
   Dataset data_;

@@ -89,8 +89,8 @@ Eigen::VectorXd CollaborativeMixtureModels::CriterionClassLogDensity(
   return log_gamma;
 }
 
-Eigen::VectorXd CollaborativeMixtureModels::SampleLogProbabilities(
-    const std::array<Eigen::VectorXd, 2>& log_gamma, Calibration& calibration) {
+Eigen::VectorXd CollaborativeMixtureModels::SampleLogOdds(
+    const std::array<Eigen::VectorXd, 2>& log_gamma) {
   const int n = data_.size();
   const Eigen::VectorXd& log_pseudo = SampleLogPseudoCounts();
   const double log_weight = LogPseudoCountWeight();
@@ -99,22 +99,29 @@ Eigen::VectorXd CollaborativeMixtureModels::SampleLogProbabilities(
     const int l = data_.label(i);
     z[i] = LogOdds(log_gamma[l][i], log_gamma[1 - l][i], log_weight + log_pseudo[i]);
   }
-  // Calibrated: fitted afresh, from the model's current calibration (a warm
-  // start: a few EM iterations per candidate instead of dozens).
-  const std::span<const double> log_odds{z.data(), static_cast<std::size_t>(n)};
-  calibration = Calibration{};
-  if (config_.prediction == Prediction::kCalibrated) {
-    calibration = config_.fit_label_noise
-                      ? FitCalibration(log_odds, calibration_)
-                      : Calibration{FitTemperature(log_odds, {}, calibration_.temperature), 0.0};
+  return z;
+}
+
+Calibration CollaborativeMixtureModels::FitCalibrationTo(const Eigen::VectorXd& log_odds) const {
+  if (config_.prediction != Prediction::kCalibrated) return Calibration{};
+  // From the model's current calibration: a warm start, a few Newton or EM
+  // steps instead of dozens.
+  const std::span<const double> z{log_odds.data(), static_cast<std::size_t>(log_odds.size())};
+  return config_.fit_label_noise
+             ? FitCalibration(z, calibration_)
+             : Calibration{FitTemperature(z, {}, calibration_.temperature), 0.0};
+}
+
+Eigen::VectorXd CollaborativeMixtureModels::SampleLogProbabilities(const Eigen::VectorXd& log_odds,
+                                                                   const Calibration& calibration) {
+  Eigen::VectorXd out(log_odds.size());
+  for (Eigen::Index i = 0; i < log_odds.size(); ++i) {
+    out[i] = LogCalibratedProbability(log_odds[i], calibration);
   }
-  Eigen::VectorXd out(n);
-  for (int i = 0; i < n; ++i) out[i] = LogCalibratedProbability(z[i], calibration);
   return out;
 }
 
-double CollaborativeMixtureModels::LogLikelihood() {
-  if (log_likelihood_) return *log_likelihood_;
+void CollaborativeMixtureModels::FillClassLogDensities() {
   for (int label = 0; label < 2; ++label) {
     if (class_log_density_[label].size() != data_.size()) {
       std::vector<Component*> members;
@@ -122,7 +129,20 @@ double CollaborativeMixtureModels::LogLikelihood() {
       class_log_density_[label] = CriterionClassLogDensity(members, true);
     }
   }
-  sample_log_probability_ = SampleLogProbabilities(class_log_density_, calibration_);
+}
+
+void CollaborativeMixtureModels::Recalibrate() {
+  if (config_.prediction != Prediction::kCalibrated) return;
+  FillClassLogDensities();
+  calibration_ = FitCalibrationTo(SampleLogOdds(class_log_density_));
+  sample_log_probability_.resize(0);
+  log_likelihood_.reset();
+}
+
+double CollaborativeMixtureModels::LogLikelihood() {
+  if (log_likelihood_) return *log_likelihood_;
+  FillClassLogDensities();
+  sample_log_probability_ = SampleLogProbabilities(SampleLogOdds(class_log_density_), calibration_);
   log_likelihood_ = sample_log_probability_.sum();
   return *log_likelihood_;
 }
@@ -149,8 +169,8 @@ bool CollaborativeMixtureModels::ImprovesLikelihood(int label, const std::vector
   // ΔL as a sum of per-sample differences rather than a difference of two sums:
   // samples the change does not reach contribute exactly 0, so rounding in the
   // sum over all n samples cannot fake a strict increase.
-  Calibration calibration;
-  const Eigen::VectorXd candidate = SampleLogProbabilities(log_gamma, calibration);
+  const Eigen::VectorXd log_odds = SampleLogOdds(log_gamma);
+  const Eigen::VectorXd candidate = SampleLogProbabilities(log_odds, FitCalibrationTo(log_odds));
   return (candidate - sample_log_probability_).sum() > 0.0;
 }
 

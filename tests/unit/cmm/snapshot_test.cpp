@@ -54,8 +54,9 @@ TEST_P(SnapshotRoundTrip, RestoredModelPredictsAndLearnsBitForBit) {
   ExpectSameSnapshot(original.Snapshot(), restored->Snapshot());
 }
 
-INSTANTIATE_TEST_SUITE_P(BothVariants, SnapshotRoundTrip,
-                         ::testing::Values(Variant::kCorrected, Variant::kPaper2018),
+INSTANTIATE_TEST_SUITE_P(EveryVariant, SnapshotRoundTrip,
+                         ::testing::Values(Variant::kCorrected, Variant::kCorrectedV1,
+                                           Variant::kPaper2018),
                          [](const ::testing::TestParamInfo<Variant>& test_info) {
                            return std::string(VariantName(test_info.param));
                          });
