@@ -62,13 +62,39 @@ void FeaturesToProto(const perception::FeatureConfig& in, v1::FeatureConfig* out
 
 }  // namespace
 
+StatusOr<cmm::Variant> VariantFromProto(int variant) {
+  switch (variant) {
+    case v1::CLASSIFIER_VARIANT_UNSPECIFIED:
+    case v1::CLASSIFIER_VARIANT_CORRECTED:
+      return cmm::Variant::kCorrected;
+    case v1::CLASSIFIER_VARIANT_PAPER2018:
+      return cmm::Variant::kPaper2018;
+    case v1::CLASSIFIER_VARIANT_CORRECTED_V1:
+      return cmm::Variant::kCorrectedV1;
+    default:
+      return InvalidArgumentError("config.classifier.variant " + std::to_string(variant) +
+                                  " is not a ClassifierVariant (0 to 3)");
+  }
+}
+
+v1::ClassifierVariant VariantToProto(cmm::Variant variant) {
+  switch (variant) {
+    case cmm::Variant::kPaper2018:
+      return v1::CLASSIFIER_VARIANT_PAPER2018;
+    case cmm::Variant::kCorrectedV1:
+      return v1::CLASSIFIER_VARIANT_CORRECTED_V1;
+    case cmm::Variant::kCorrected:
+      break;
+  }
+  return v1::CLASSIFIER_VARIANT_CORRECTED;
+}
+
 StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& config) {
   session::SessionSettings settings;
-  const cmm::Variant variant = config.classifier().variant() == v1::CLASSIFIER_VARIANT_PAPER2018
-                                   ? cmm::Variant::kPaper2018
-                                   : cmm::Variant::kCorrected;
-  settings.classifier = cmm::CmmConfig::ForVariant(variant);
-  settings.exploration = exploration::ExplorationConfig::ForVariant(variant);
+  auto variant = VariantFromProto(config.classifier().variant());
+  if (!variant.ok()) return variant.status();
+  settings.classifier = cmm::CmmConfig::ForVariant(*variant);
+  settings.exploration = exploration::ExplorationConfig::ForVariant(*variant);
   if (config.classifier().has_alpha()) settings.classifier.alpha = config.classifier().alpha();
   if (config.classifier().has_regularization()) {
     settings.classifier.regularization = config.classifier().regularization();
@@ -112,9 +138,7 @@ StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& co
 v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings) {
   v1::SessionConfig config;
   auto* classifier = config.mutable_classifier();
-  classifier->set_variant(settings.classifier.variant == cmm::Variant::kPaper2018
-                              ? v1::CLASSIFIER_VARIANT_PAPER2018
-                              : v1::CLASSIFIER_VARIANT_CORRECTED);
+  classifier->set_variant(VariantToProto(settings.classifier.variant));
   classifier->set_alpha(settings.classifier.alpha);
   classifier->set_regularization(settings.classifier.regularization);
   const auto& voxels = settings.perception.supervoxels;

@@ -10,6 +10,11 @@
 
 namespace relmap::service {
 
+// The classifier variant of the API's enum; a value outside it (an old or a
+// corrupt client) → INVALID_ARGUMENT naming the field, not a silent default.
+StatusOr<cmm::Variant> VariantFromProto(int variant);
+v1::ClassifierVariant VariantToProto(cmm::Variant variant);
+
 // The settings a SessionConfig asks for, unset fields at their defaults; the
 // ranges are checked by session::Validate when the session is created.
 StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& config);

@@ -21,6 +21,13 @@ StatusOr<std::shared_ptr<session::Session>> LoadStoredSession(session::SessionSt
   }
   auto settings = SettingsFromProto(config);
   if (!settings.ok()) return settings.status();
+  // The classifier as the store recorded it field by field: a session stored
+  // as "corrected" before December 2026 was migrated to corrected_v1 there,
+  // while its config message still says CORRECTED.
+  if (record->cmm_config.variant != settings->classifier.variant) {
+    settings->exploration = exploration::ExplorationConfig::ForVariant(record->cmm_config.variant);
+  }
+  settings->classifier = record->cmm_config;
   const std::int64_t created_ms =
       std::chrono::duration_cast<std::chrono::milliseconds>(record->created_at.time_since_epoch())
           .count();

@@ -61,6 +61,11 @@ CREATE TABLE session_owners (
 );
 CREATE INDEX session_owners_by_owner ON session_owners (owner);
 )sql",
+    // 1 → 2 (December 2026): "corrected" names a new classifier; the sessions
+    // created under the old one keep it, by its new name.
+    R"sql(
+UPDATE sessions SET cmm_variant = 'corrected_v1' WHERE cmm_variant = 'corrected';
+)sql",
 };
 
 // pg_advisory_xact_lock's key for migrations: "relmapSc" in ASCII.

@@ -262,7 +262,8 @@ StatusOr<SessionRecord> PostgresSessionStore::LoadSession(std::string_view id) {
   if (!parsed.ok()) {
     return DataLossError("session " + Quoted(id) + " has unknown CMM variant " + Quoted(variant));
   }
-  r.cmm_config.variant = *parsed;
+  // The options not stored field by field are the variant's preset.
+  r.cmm_config = cmm::CmmConfig::ForVariant(*parsed);
   r.cmm_config.alpha = row->Float8(0, 5);
   r.cmm_config.regularization = row->Float8(0, 6);
   r.cmm_config.seed = static_cast<std::uint64_t>(row->Int8(0, 7));

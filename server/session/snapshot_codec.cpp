@@ -20,12 +20,17 @@ namespace relmap::session {
 namespace {
 
 constexpr std::string_view kMagic = "RMCS";
-constexpr std::uint32_t kVersion = 1;
+// Version 2 (December 2026) adds the generalisation options to the config and
+// the prior's κ and the calibration to the state; version 1 blobs still decode.
+constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersionBeforeGeneralisation = 1;
 constexpr std::size_t kChecksumBytes = 4;
 
 constexpr auto& kSwitchBits = kPaper2018SwitchFields;
-constexpr std::uint8_t kVariantCorrected = 0;
+// 0 is what version 1 called "corrected": today's corrected_v1.
+constexpr std::uint8_t kVariantCorrectedV1 = 0;
 constexpr std::uint8_t kVariantPaper2018 = 1;
+constexpr std::uint8_t kVariantCorrected = 2;
 constexpr std::uint8_t kScatterFull = 0;
 constexpr std::uint8_t kScatterSymmetric = 1;
 
@@ -41,8 +46,20 @@ std::uint32_t Crc32(std::string_view bytes) {
   return static_cast<std::uint32_t>(crc);
 }
 
+std::uint8_t VariantCode(cmm::Variant variant) {
+  switch (variant) {
+    case cmm::Variant::kPaper2018:
+      return kVariantPaper2018;
+    case cmm::Variant::kCorrectedV1:
+      return kVariantCorrectedV1;
+    case cmm::Variant::kCorrected:
+      break;
+  }
+  return kVariantCorrected;
+}
+
 void EncodeConfig(const cmm::CmmConfig& config, LittleEndianWriter& out) {
-  out.U8(config.variant == cmm::Variant::kPaper2018 ? kVariantPaper2018 : kVariantCorrected);
+  out.U8(VariantCode(config.variant));
   out.F64(config.alpha);
   out.F64(config.regularization);
   out.U64(config.seed);
@@ -51,24 +68,59 @@ void EncodeConfig(const cmm::CmmConfig& config, LittleEndianWriter& out) {
     if (config.switches.*kSwitchBits[i]) bits = static_cast<std::uint8_t>(bits | (1u << i));
   }
   out.U8(bits);
+  out.U8(static_cast<std::uint8_t>(config.covariance));
+  out.F64(config.prior_pseudo_samples);
+  out.F64(config.variance_floor);
+  out.U8(static_cast<std::uint8_t>(config.acceptance));
+  out.U8(static_cast<std::uint8_t>(config.split_overlap));
+  out.U8(static_cast<std::uint8_t>(config.prediction));
+  out.U8(config.fit_label_noise ? 1 : 0);
+}
+
+// Reads a one-byte enum of values 0 .. last.
+template <typename Enum>
+bool ReadEnum(LittleEndianReader& in, Enum last, Enum& out) {
+  std::uint8_t v = 0;
+  if (!in.U8(v) || v > static_cast<std::uint8_t>(last)) return false;
+  out = static_cast<Enum>(v);
+  return true;
+}
+
+Status DecodeGeneralisation(LittleEndianReader& in, cmm::CmmConfig& config) {
+  std::uint8_t label_noise = 0;
+  if (!ReadEnum(in, cmm::CovarianceEstimate::kPooledPrior, config.covariance) ||
+      !in.F64(config.prior_pseudo_samples) || !in.F64(config.variance_floor) ||
+      !ReadEnum(in, cmm::AcceptanceTest::kLeaveOneOut, config.acceptance) ||
+      !ReadEnum(in, cmm::SplitOverlap::kOtherSamples, config.split_overlap) ||
+      !ReadEnum(in, cmm::Prediction::kCalibrated, config.prediction) || !in.U8(label_noise) ||
+      label_noise > 1) {
+    return DataLossError("snapshot blob has a truncated or unknown generalisation option");
+  }
+  config.fit_label_noise = label_noise == 1;
+  return OkStatus();
 }
 
 Status Truncated(std::string_view what) {
   return DataLossError("snapshot blob truncated in " + std::string(what));
 }
 
-Status DecodeConfig(LittleEndianReader& in, cmm::CmmConfig& config) {
+Status DecodeConfig(LittleEndianReader& in, std::uint32_t version, cmm::CmmConfig& config) {
   std::uint8_t variant = 0;
-  std::uint8_t bits = 0;
-  if (!in.U8(variant) || !in.F64(config.alpha) || !in.F64(config.regularization) ||
-      !in.U64(config.seed) || !in.U8(bits)) {
-    return Truncated("the config");
-  }
-  if (variant != kVariantCorrected && variant != kVariantPaper2018) {
+  if (!in.U8(variant)) return Truncated("the config");
+  if (variant > (version == kVersionBeforeGeneralisation ? kVariantPaper2018 : kVariantCorrected)) {
     return DataLossError("snapshot blob has unknown variant " + std::to_string(variant));
   }
-  config.variant =
-      variant == kVariantPaper2018 ? cmm::Variant::kPaper2018 : cmm::Variant::kCorrected;
+  config = cmm::CmmConfig::ForVariant(variant == kVariantPaper2018     ? cmm::Variant::kPaper2018
+                                      : variant == kVariantCorrectedV1 ? cmm::Variant::kCorrectedV1
+                                                                       : cmm::Variant::kCorrected);
+  std::uint8_t bits = 0;
+  if (!in.F64(config.alpha) || !in.F64(config.regularization) || !in.U64(config.seed) ||
+      !in.U8(bits)) {
+    return Truncated("the config");
+  }
+  if (version != kVersionBeforeGeneralisation) {
+    if (Status status = DecodeGeneralisation(in, config); !status.ok()) return status;
+  }
   if (bits >> std::size(kSwitchBits) != 0) {
     return DataLossError("snapshot blob has unknown switch bits " + std::to_string(bits));
   }
@@ -124,8 +176,8 @@ Status DecodeComponent(LittleEndianReader& in, std::size_t p, cmm::ComponentSnap
   return OkStatus();
 }
 
-Status DecodeBody(LittleEndianReader& in, cmm::CmmSnapshot& s) {
-  if (Status status = DecodeConfig(in, s.config); !status.ok()) return status;
+Status DecodeBody(LittleEndianReader& in, std::uint32_t version, cmm::CmmSnapshot& s) {
+  if (Status status = DecodeConfig(in, version, s.config); !status.ok()) return status;
   std::uint32_t dimension = 0;
   std::uint64_t n = 0;
   if (!in.U32(dimension) || !in.U64(n)) return Truncated("the dataset size");
@@ -159,6 +211,10 @@ Status DecodeBody(LittleEndianReader& in, cmm::CmmSnapshot& s) {
     if (!in.U64(word)) return Truncated("the random state");
   }
   if (!in.U64(s.splits) || !in.U64(s.merges)) return Truncated("the split and merge counts");
+  if (version != kVersionBeforeGeneralisation &&
+      (!in.F64(s.prior_pseudo_samples) || !in.F64(s.temperature) || !in.F64(s.label_noise))) {
+    return Truncated("the prior and the calibration");
+  }
   if (in.remaining() != 0) {
     return DataLossError("snapshot blob has " + std::to_string(in.remaining()) +
                          " unexpected trailing bytes");
@@ -242,6 +298,9 @@ StatusOr<std::string> EncodeSnapshot(const cmm::CmmSnapshot& s) {
   for (std::uint64_t word : s.random_state) out.U64(word);
   out.U64(s.splits);
   out.U64(s.merges);
+  out.F64(s.prior_pseudo_samples);
+  out.F64(s.temperature);
+  out.F64(s.label_noise);
   out.U32(Crc32(blob));
   return blob;
 }
@@ -262,12 +321,12 @@ StatusOr<cmm::CmmSnapshot> DecodeSnapshot(std::string_view blob) {
   LittleEndianReader in(body.substr(kMagic.size()));
   std::uint32_t version = 0;
   in.U32(version);
-  if (version != kVersion) {
+  if (version != kVersion && version != kVersionBeforeGeneralisation) {
     return DataLossError("snapshot blob has format version " + std::to_string(version) +
-                         "; this build reads version " + std::to_string(kVersion));
+                         "; this build reads versions 1 and " + std::to_string(kVersion));
   }
   cmm::CmmSnapshot snapshot;
-  if (Status status = DecodeBody(in, snapshot); !status.ok()) return status;
+  if (Status status = DecodeBody(in, version, snapshot); !status.ok()) return status;
   return snapshot;
 }
 

@@ -50,6 +50,11 @@ CREATE TABLE snapshots (
   snapshot BLOB NOT NULL
 ) STRICT;
 )sql",
+    // 1 → 2 (December 2026): "corrected" names a new classifier; the sessions
+    // created under the old one keep it, by its new name.
+    R"sql(
+UPDATE sessions SET cmm_variant = 'corrected_v1' WHERE cmm_variant = 'corrected';
+)sql",
 };
 
 }  // namespace

@@ -234,7 +234,8 @@ StatusOr<SessionRecord> SqliteSessionStore::LoadSession(std::string_view id) {
   if (!parsed.ok()) {
     return DataLossError("session " + Quoted(id) + " has unknown CMM variant " + Quoted(variant));
   }
-  r.cmm_config.variant = *parsed;
+  // The options not stored field by field are the variant's preset.
+  r.cmm_config = cmm::CmmConfig::ForVariant(*parsed);
   r.cmm_config.alpha = select.Double(5);
   r.cmm_config.regularization = select.Double(6);
   r.cmm_config.seed = static_cast<std::uint64_t>(select.Int64(7));
