@@ -17,7 +17,7 @@ constexpr const char* kGlobalFlags[] = {"server", "token", "admin-key", "tls-ca"
 
 const char kCliUsage[] =
     "usage: relmap <command> [flags]\n"
-    "  session create [--variant corrected|paper2018] [--alpha A] [--seed S]\n"
+    "  session create [--variant corrected|corrected_v1|paper2018] [--alpha A] [--seed S]\n"
     "                 [--feature-dimension P] [--colour corrected|paper2018]\n"
     "                 [--fpfh shared_voxels|exact_union|raw_points] [--fpfh-radius M]\n"
     "                 [--config config.json]\n"

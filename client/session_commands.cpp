@@ -39,13 +39,9 @@ v1::SessionConfig ConfigFrom(const CommandLine& args) {
     }
   }
   if (args.Has("variant")) {
-    const std::string variant = args.Get("variant");
-    if (variant != "corrected" && variant != "paper2018") {
-      UsageError("--variant is corrected or paper2018, not '" + variant + "'");
-    }
-    config.mutable_classifier()->set_variant(variant == "paper2018"
-                                                 ? v1::CLASSIFIER_VARIANT_PAPER2018
-                                                 : v1::CLASSIFIER_VARIANT_CORRECTED);
+    config.mutable_classifier()->set_variant(
+        EnumFlag(args, "variant", "CLASSIFIER_VARIANT_", &v1::ClassifierVariant_Parse,
+                 "corrected, corrected_v1 or paper2018"));
   }
   if (args.Has("alpha")) config.mutable_classifier()->set_alpha(args.Number("alpha"));
   v1::FeatureConfig* features = config.mutable_features();

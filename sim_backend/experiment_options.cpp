@@ -67,33 +67,35 @@ StatusOr<std::vector<int>> SnapshotList(const std::string& text, int iterations)
 
 // The words of a flag that names one of two choices; parsing and naming read the
 // same table.
-template <typename Enum>
-using Words = std::array<std::pair<Enum, const char*>, 2>;
+template <typename Enum, std::size_t N = 2>
+using Words = std::array<std::pair<Enum, const char*>, N>;
 constexpr Words<LabellingMode> kModes = {
     {{LabellingMode::kOracle, "oracle"}, {LabellingMode::kPhysical, "physical"}}};
 constexpr Words<TargetSampling> kSamplings = {
     {{TargetSampling::kChoice, "choice"}, {TargetSampling::kRandom, "random"}}};
-constexpr Words<v1::ClassifierVariant> kVariants = {
+constexpr Words<v1::ClassifierVariant, 3> kVariants = {
     {{v1::CLASSIFIER_VARIANT_CORRECTED, "corrected"},
+     {v1::CLASSIFIER_VARIANT_CORRECTED_V1, "corrected_v1"},
      {v1::CLASSIFIER_VARIANT_PAPER2018, "paper2018"}}};
 
 // `*text`, if given, as one of `words` into `*out`.
-template <typename Enum>
-Status ParseWord(std::string_view flag, const std::string* text, const Words<Enum>& words,
+template <typename Enum, std::size_t N>
+Status ParseWord(std::string_view flag, const std::string* text, const Words<Enum, N>& words,
                  Enum* out) {
   if (text == nullptr) return OkStatus();
+  std::string choices;
   for (const auto& [value, word] : words) {
     if (*text == word) {
       *out = value;
       return OkStatus();
     }
+    choices += (choices.empty() ? "" : " | ") + std::string(word);
   }
-  return FlagError(flag, std::string("is ") + words[0].second + " or " + words[1].second +
-                             ", got '" + *text + "'");
+  return FlagError(flag, "is " + choices + ", got '" + *text + "'");
 }
 
-template <typename Enum>
-const char* WordOf(const Words<Enum>& words, Enum value) {
+template <typename Enum, std::size_t N>
+const char* WordOf(const Words<Enum, N>& words, Enum value) {
   for (const auto& [candidate, word] : words) {
     if (candidate == value) return word;
   }
@@ -114,7 +116,7 @@ const char kRunUsage[] =
     "usage: relmap-sim run --scene <name|file> --out DIR [--mode oracle|physical]\n"
     "                      [--iterations 100] [--replications 1] [--seed 1]\n"
     "                      [--server host:port | --server-binary PATH]\n"
-    "                      [--variant corrected|paper2018] [--alpha A]\n"
+    "                      [--variant corrected|corrected_v1|paper2018] [--alpha A]\n"
     "                      [--sampling choice|random] [--parallel 2]\n"
     "                      [--snapshots 1,10,100|none] [--change-min-neighbours N]\n"
     "  --mode        oracle: every object re-spawned each iteration, the target labelled\n"
