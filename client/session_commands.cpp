@@ -39,9 +39,9 @@ v1::SessionConfig ConfigFrom(const CommandLine& args) {
     }
   }
   if (args.Has("variant")) {
-    config.mutable_classifier()->set_variant(
-        EnumFlag(args, "variant", "CLASSIFIER_VARIANT_", &v1::ClassifierVariant_Parse,
-                 "corrected, corrected_v1 or paper2018"));
+    config.mutable_classifier()->set_variant(EnumFlag(args, "variant", "CLASSIFIER_VARIANT_",
+                                                      &v1::ClassifierVariant_Parse,
+                                                      "corrected, corrected_v1 or paper2018"));
   }
   if (args.Has("alpha")) config.mutable_classifier()->set_alpha(args.Number("alpha"));
   v1::FeatureConfig* features = config.mutable_features();
