@@ -23,12 +23,16 @@ run() {  # run <experiment> <relmap-sim run flags...>
   "$sim" run "$@" --replications "$reps" --seed 1 --parallel 2 --out "$out/$name"
 }
 
-for scene in MoveableBalls MoveableBricks1 MoveableBricks2 WhiteMoveableBalls SimKitchen; do
-  run "$scene" --scene "$scene" --mode oracle --variant corrected --iterations 200
-done
+# The headline comparison first: the setup where one Gaussian per class used to
+# win, with the default and with corrected_v1 side by side.
+run MoveableBalls --scene MoveableBalls --mode oracle --variant corrected --iterations 200
 run WhiteMoveableBricks-400 --scene WhiteMoveableBricks --mode oracle --variant corrected --iterations 400
 run WhiteMoveableBricks-400-corrected_v1 --scene WhiteMoveableBricks --mode oracle --variant corrected_v1 --iterations 400
+run SimKitchen --scene SimKitchen --mode oracle --variant corrected --iterations 200
 run WhiteMoveableBricks-400-alpha1 --scene WhiteMoveableBricks --mode oracle --variant corrected --alpha 1 --iterations 400
+for scene in MoveableBricks1 MoveableBricks2 WhiteMoveableBalls; do
+  run "$scene" --scene "$scene" --mode oracle --variant corrected --iterations 200
+done
 run MoveableBricks1-corrected_v1 --scene MoveableBricks1 --mode oracle --variant corrected_v1 --iterations 200
 run MoveableBricks1-paper2018 --scene MoveableBricks1 --mode oracle --variant paper2018 --iterations 200
 run MoveableBricks1-random --scene MoveableBricks1 --mode oracle --variant corrected --sampling random --iterations 200
