@@ -5,6 +5,7 @@ add_library(relmap_sim_runner STATIC
   curves.cpp
   experiment.cpp
   experiment_options.cpp
+  flags.cpp
   ground_truth.cpp
   map_snapshots.cpp
   packed_cloud.cpp
@@ -12,6 +13,7 @@ add_library(relmap_sim_runner STATIC
   replication.cpp
   scene_loading.cpp
   server_binary.cpp
+  server_connection.cpp
   spread.cpp
   target_choice.cpp)
 target_include_directories(relmap_sim_runner PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
