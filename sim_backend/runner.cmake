@@ -3,6 +3,9 @@
 # metrics (pure math); never the server's session, service or perception libraries.
 add_library(relmap_sim_runner STATIC
   curves.cpp
+  dataset_csv.cpp
+  dataset_frame.cpp
+  dataset_options.cpp
   experiment.cpp
   experiment_options.cpp
   flags.cpp
@@ -30,7 +33,7 @@ if(TARGET relmap_sim_world)
   target_compile_definitions(relmap_sim_runner PRIVATE RELMAP_SIM_WITH_WORLD=1)
 endif()
 
-add_executable(relmap-sim relmap_sim_main.cpp run_command.cpp)
+add_executable(relmap-sim relmap_sim_main.cpp run_command.cpp dataset_command.cpp)
 target_link_libraries(relmap-sim PRIVATE relmap_sim_runner relmap_local_server relmap_warnings)
 if(TARGET relmap_sim_scene_commands)
   target_link_libraries(relmap-sim PRIVATE relmap_sim_scene_commands)
