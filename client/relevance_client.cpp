@@ -161,11 +161,13 @@ grpc::Status RelevanceClient::DeleteSession(const SessionHandle& session) {
 
 grpc::Status RelevanceClient::ComputeMaps(const SessionHandle& session, const v1::Cloud& cloud,
                                           v1::ComputeMapsResponse* response,
-                                          PointLabels point_labels, MapsRepeat repeat) {
+                                          PointLabels point_labels, MapsRepeat repeat,
+                                          SupervoxelFeatures features) {
   v1::ComputeMapsRequest request;
   request.set_session_id(session.id);
   *request.mutable_cloud() = cloud;
   request.set_omit_point_labels(point_labels == PointLabels::kOmit);
+  request.set_include_features(features == SupervoxelFeatures::kInclude);
   // A repeat would draw another target and cache another frame: only when asked.
   return Invoke(&v1::RelevanceService::Stub::ComputeMaps, request, response,
                 repeat == MapsRepeat::kAfterBrokenConnection ? Idempotence::kIdempotent

@@ -34,6 +34,10 @@ enum class PointLabels { kInclude, kOmit };
 // server may die mid-call) repeats it: the call then lands on the next server.
 enum class MapsRepeat { kNever, kAfterBrokenConnection };
 
+// Whether ComputeMaps answers with each supervoxel's 48 feature values
+// (Supervoxel.features; for exporting datasets), or without (the default).
+enum class SupervoxelFeatures { kOmit, kInclude };
+
 // A session as the client holds it.
 struct SessionHandle {
   std::string id;
@@ -58,7 +62,8 @@ class RelevanceClient {
   grpc::Status ComputeMaps(const SessionHandle& session, const v1::Cloud& cloud,
                            v1::ComputeMapsResponse* response,
                            PointLabels point_labels = PointLabels::kInclude,
-                           MapsRepeat repeat = MapsRepeat::kNever);
+                           MapsRepeat repeat = MapsRepeat::kNever,
+                           SupervoxelFeatures features = SupervoxelFeatures::kOmit);
   // PostOutcome and AddSamples are deduplicated by the server on `request_id`; an
   // empty one is replaced by a fresh random id, so that these calls are always safe
   // to retry. Pass your own to make a repeat after a client crash harmless too.

@@ -3,11 +3,11 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <map>
 #include <string_view>
+
+#include "flags.h"
 
 namespace relmap::sim {
 namespace {
@@ -20,34 +20,6 @@ constexpr std::string_view kFlags[] = {"scene",         "mode",
                                        "sampling",      "parallel",
                                        "snapshots",     "change-min-neighbours"};
 
-Status FlagError(std::string_view flag, const std::string& problem) {
-  return InvalidArgumentError("--" + std::string(flag) + " " + problem);
-}
-
-// A whole number in [low, high].
-StatusOr<long long> Integer(std::string_view flag, const std::string& text, long long low,
-                            long long high) {
-  long long value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size()) {
-    return FlagError(flag, "expects a whole number, got '" + text + "'");
-  }
-  if (value < low || value > high) {
-    return FlagError(flag, "must be in [" + std::to_string(low) + ", " + std::to_string(high) +
-                               "], got " + text);
-  }
-  return value;
-}
-
-StatusOr<std::uint64_t> Unsigned(std::string_view flag, const std::string& text) {
-  std::uint64_t value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size()) {
-    return FlagError(flag, "expects a whole number >= 0, got '" + text + "'");
-  }
-  return value;
-}
-
 // "1,10,100": iterations in [1, iterations], sorted, without repeats.
 StatusOr<std::vector<int>> SnapshotList(const std::string& text, int iterations) {
   std::vector<int> snapshots;
@@ -55,7 +27,7 @@ StatusOr<std::vector<int>> SnapshotList(const std::string& text, int iterations)
   while (start <= text.size()) {
     const std::size_t comma = std::min(text.find(',', start), text.size());
     StatusOr<long long> iteration =
-        Integer("snapshots", text.substr(start, comma - start), 1, iterations);
+        ParseInteger("snapshots", text.substr(start, comma - start), 1, iterations);
     if (!iteration.ok()) return iteration.status();
     snapshots.push_back(static_cast<int>(*iteration));
     start = comma + 1;
@@ -140,29 +112,12 @@ const char kRunUsage[] =
     "Exit codes: 0 success, 1 a failed run or server error, 2 bad arguments or files.\n";
 
 StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* argv, int first) {
-  std::map<std::string, std::string, std::less<>> flags;
-  for (int i = first; i < argc; ++i) {
-    const std::string_view word = argv[i];
-    if (!word.starts_with("--"))
-      return InvalidArgumentError("unexpected argument '" + std::string(word) + "'");
-    const std::string_view name = word.substr(2);
-    if (std::find(std::begin(kFlags), std::end(kFlags), name) == std::end(kFlags)) {
-      return InvalidArgumentError("unknown flag " + std::string(word));
-    }
-    if (i + 1 >= argc) return FlagError(name, "needs a value");
-    flags[std::string(name)] = argv[++i];
-  }
-  const auto value = [&](std::string_view name) -> const std::string* {
-    const auto it = flags.find(name);
-    return it == flags.end() ? nullptr : &it->second;
-  };
+  StatusOr<FlagValues> flags = ParseFlagPairs(argc, argv, first, kFlags);
+  if (!flags.ok()) return flags.status();
+  const auto value = [&](std::string_view name) { return FlagValue(*flags, name); };
 
   ExperimentOptions options;
-  for (const char* required : {"scene", "out"}) {
-    if (value(required) == nullptr || value(required)->empty()) {
-      return FlagError(required, "is required");
-    }
-  }
+  if (Status required = RequireFlags(*flags, {"scene", "out"}); !required.ok()) return required;
   options.scene = *value("scene");
   options.out = *value("out");
   if (Status parsed = ParseWord("mode", value("mode"), kModes, &options.mode); !parsed.ok()) {
@@ -173,20 +128,18 @@ StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* 
                                                       {"parallel", &options.parallel}};
   for (const auto& [name, field] : counts) {
     if (const std::string* text = value(name)) {
-      StatusOr<long long> count = Integer(name, *text, 1, 1000000);
+      StatusOr<long long> count = ParseInteger(name, *text, 1, 1000000);
       if (!count.ok()) return count.status();
       *field = static_cast<int>(*count);
     }
   }
   if (const std::string* seed = value("seed")) {
-    StatusOr<std::uint64_t> parsed = Unsigned("seed", *seed);
+    StatusOr<std::uint64_t> parsed = ParseUnsigned("seed", *seed);
     if (!parsed.ok()) return parsed.status();
     options.seed = *parsed;
   }
-  if (const std::string* server = value("server")) options.server = *server;
-  if (const std::string* binary = value("server-binary")) options.server_binary = *binary;
-  if (!options.server.empty() && !options.server_binary.empty()) {
-    return InvalidArgumentError("--server and --server-binary exclude each other");
+  if (Status read = ReadServerFlags(*flags, &options.server, &options.server_binary); !read.ok()) {
+    return read;
   }
   if (Status parsed = ParseWord("variant", value("variant"), kVariants, &options.variant);
       !parsed.ok()) {

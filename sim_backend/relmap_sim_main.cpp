@@ -1,5 +1,6 @@
 // relmap-sim: the ODE-simulated pusher and experiment runner (issue 5). Each command
-// gets the arguments from its own name on (argv[0] = "scenes", "render" or "run").
+// gets the arguments from its own name on (argv[0] = "scenes", "render", "run" or
+// "dataset").
 #include <cstdio>
 #include <string_view>
 
@@ -13,6 +14,8 @@ constexpr char kUsage[] =
     "  render --scene <name|file> --png out.png [--seed S]\n"
     "                                           the camera view with a ground-truth overlay\n"
     "  run --scene <name|file> --out DIR ...    an experiment (relmap-sim run --help)\n"
+    "  dataset --scene <name|file> --out F.csv  labelled supervoxel features of re-spawned\n"
+    "                                           frames (relmap-sim dataset --help)\n"
     "Exit codes: 0 success, 1 a failed run or server error, 2 bad arguments or files.\n";
 
 #ifndef RELMAP_SIM_WITH_SCENE_COMMANDS
@@ -28,6 +31,7 @@ int NotBuiltYet(const char* command) {
 int main(int argc, char** argv) {
   const std::string_view command = argc >= 2 ? argv[1] : "";
   if (command == "run") return relmap::sim::RunExperimentCommand(argc - 1, argv + 1);
+  if (command == "dataset") return relmap::sim::RunDatasetCommand(argc - 1, argv + 1);
   if (command == "scenes" || command == "render") {
 #ifdef RELMAP_SIM_WITH_SCENE_COMMANDS
     return command == "scenes" ? relmap::sim::RunScenesCommand(argc - 1, argv + 1)

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "ground_truth.h"
+#include "grpc_status.h"
 #include "map_snapshots.h"
 #include "packed_cloud.h"
 #include "seeds.h"
@@ -37,12 +38,6 @@ std::string RequestId(int replication, int iteration) {
   id += "-iteration-";
   id += std::to_string(iteration);
   return id;
-}
-
-Status FromGrpc(const grpc::Status& status, const char* call) {
-  if (status.ok()) return OkStatus();
-  return Status(static_cast<StatusCode>(status.error_code()),
-                std::string(call) + ": " + status.error_message());
 }
 
 ModelCounts CountsOf(const v1::SessionStats& stats) {

@@ -1,15 +1,14 @@
 // relmap-sim run: options, the scene check, the server (given or started), the
 // experiment, and a few lines of results on standard error.
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <string_view>
 
 #include "experiment.h"
-#include "local_server.h"
+#include "flags.h"
 #include "scene_loading.h"
-#include "server_binary.h"
+#include "server_connection.h"
 #include "sim_commands.h"
 #include "spread.h"
 
@@ -59,11 +58,9 @@ void PrintResults(const ExperimentOptions& options, const ExperimentRun& run) {
 }  // namespace
 
 int RunExperimentCommand(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    if (std::string_view(argv[i]) == "--help" || std::string_view(argv[i]) == "-h") {
-      std::fputs(kRunUsage, stdout);
-      return 0;
-    }
+  if (WantsHelp(argc, argv, 1)) {
+    std::fputs(kRunUsage, stdout);
+    return 0;
   }
   StatusOr<ExperimentOptions> options = ParseExperimentOptions(argc, argv, 1);
   if (!options.ok()) {
@@ -80,29 +77,15 @@ int RunExperimentCommand(int argc, char** argv) {
   std::filesystem::create_directories(options->out, error);
   if (error) return Fail(2, "cannot create " + options->out + ": " + error.message());
 
-  std::unique_ptr<client::LocalServer> launched;
-  std::string address = options->server;
-  if (address.empty()) {
-    StatusOr<std::string> binary = FindServerBinary(options->server_binary);
-    if (!binary.ok()) return Fail(2, binary.status().message());
-    client::LocalServerOptions server_options;
-    server_options.log_path = options->out + "/server.log";
-    StatusOr<std::unique_ptr<client::LocalServer>> started =
-        client::LocalServer::Start(*binary, server_options);
-    if (!started.ok()) return Fail(1, started.status().message());
-    launched = std::move(*started);
-    address = launched->address();
-    std::fprintf(stderr, "relmap-sim run: started %s on %s (log in %s/server.log)\n",
-                 binary->c_str(), address.c_str(), options->out.c_str());
+  client::LocalServerOptions server_options;
+  server_options.log_path = options->out + "/server.log";
+  StatusOr<ServerConnection> server = ConnectOrStartServer(
+      options->server, options->server_binary, server_options, "relmap-sim run", stderr);
+  if (!server.ok()) {
+    return Fail(server.status().code() == StatusCode::kNotFound ? 2 : 1, server.status().message());
   }
-  client::ClientOptions client_options;
-  client_options.address = address;
-  client::RelevanceClient client(client_options);
-  if (const char* key = std::getenv("RELMAP_ADMIN_KEY"); key != nullptr && *key != '\0') {
-    client.set_admin_key(key);
-  }
-  StatusOr<ExperimentRun> run =
-      RunExperiment(*options, LoadOdeScene, client, address, launched != nullptr, stderr);
+  StatusOr<ExperimentRun> run = RunExperiment(*options, LoadOdeScene, *server->client,
+                                              server->address, server->launched != nullptr, stderr);
   if (!run.ok()) return Fail(1, run.status().message());
   PrintResults(*options, *run);
   for (const ReplicationResult& r : run->replications) {

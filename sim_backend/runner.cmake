@@ -3,8 +3,12 @@
 # metrics (pure math); never the server's session, service or perception libraries.
 add_library(relmap_sim_runner STATIC
   curves.cpp
+  dataset_csv.cpp
+  dataset_frame.cpp
+  dataset_options.cpp
   experiment.cpp
   experiment_options.cpp
+  flags.cpp
   ground_truth.cpp
   map_snapshots.cpp
   packed_cloud.cpp
@@ -12,6 +16,7 @@ add_library(relmap_sim_runner STATIC
   replication.cpp
   scene_loading.cpp
   server_binary.cpp
+  server_connection.cpp
   spread.cpp
   target_choice.cpp)
 target_include_directories(relmap_sim_runner PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
@@ -28,7 +33,7 @@ if(TARGET relmap_sim_world)
   target_compile_definitions(relmap_sim_runner PRIVATE RELMAP_SIM_WITH_WORLD=1)
 endif()
 
-add_executable(relmap-sim relmap_sim_main.cpp run_command.cpp)
+add_executable(relmap-sim relmap_sim_main.cpp run_command.cpp dataset_command.cpp)
 target_link_libraries(relmap-sim PRIVATE relmap_sim_runner relmap_local_server relmap_warnings)
 if(TARGET relmap_sim_scene_commands)
   target_link_libraries(relmap-sim PRIVATE relmap_sim_scene_commands)

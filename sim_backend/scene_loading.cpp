@@ -19,6 +19,16 @@ StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeScene(const std::string& name_o
   return std::unique_ptr<SimulatedScene>(std::move(*loaded));
 }
 
+StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeSceneOfSize(const std::string& name_or_path,
+                                                             std::uint64_t seed,
+                                                             std::uint32_t width,
+                                                             std::uint32_t height) {
+  StatusOr<std::unique_ptr<OdeScene>> loaded = OdeScene::Load(name_or_path, seed);
+  if (!loaded.ok()) return loaded.status();
+  (*loaded)->SetImageSize(width, height);
+  return std::unique_ptr<SimulatedScene>(std::move(*loaded));
+}
+
 #else
 
 StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeScene(const std::string& name_or_path,
@@ -26,6 +36,12 @@ StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeScene(const std::string& name_o
   return Status(StatusCode::kUnimplemented,
                 "the ODE world (relmap_sim_world) is not built yet: cannot load scene '" +
                     name_or_path + "'");
+}
+
+StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeSceneOfSize(const std::string& name_or_path,
+                                                             std::uint64_t seed, std::uint32_t,
+                                                             std::uint32_t) {
+  return LoadOdeScene(name_or_path, seed);
 }
 
 #endif

@@ -16,5 +16,11 @@ namespace relmap::sim {
 // file) drawn from `seed`; its errors are the world's (unknown scene, bad file).
 StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeScene(const std::string& name_or_path,
                                                        std::uint64_t seed);
+// The same rendered at `width`×`height` pixels, the scene camera's field of view kept
+// (as `relmap-sim render --width --height`).
+StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeSceneOfSize(const std::string& name_or_path,
+                                                             std::uint64_t seed,
+                                                             std::uint32_t width,
+                                                             std::uint32_t height);
 
 }  // namespace relmap::sim

@@ -11,5 +11,7 @@ int RunScenesCommand(int argc, char** argv);
 int RunRenderCommand(int argc, char** argv);
 // relmap-sim run ...: the experiment runner.
 int RunExperimentCommand(int argc, char** argv);
+// relmap-sim dataset ...: labelled supervoxel features of re-spawned frames, as CSV.
+int RunDatasetCommand(int argc, char** argv);
 
 }  // namespace relmap::sim

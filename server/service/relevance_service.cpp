@@ -262,6 +262,10 @@ grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
       out->set_point_count(static_cast<std::uint32_t>(sv.point_indices.size()));
       out->set_relevance(maps.relevance[sv.id]);
       out->set_choice(maps.choice[sv.id]);
+      if (request->include_features()) {
+        const auto row = frame.features.values.row(sv.id);
+        out->mutable_features()->Add(row.begin(), row.end());
+      }
     }
     if (maps.target >= 0)
       response->set_target_supervoxel_id(static_cast<std::uint32_t>(maps.target));

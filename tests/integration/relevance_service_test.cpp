@@ -49,12 +49,13 @@ class RelevanceServer : public ::testing::Test {
   }
 
   grpc::Status ComputeMaps(const std::string& id, const std::string& token, const v1::Cloud& cloud,
-                           v1::ComputeMapsResponse* response) {
+                           v1::ComputeMapsResponse* response, bool include_features = false) {
     grpc::ClientContext context;
     Authorise(context, token);
     v1::ComputeMapsRequest request;
     request.set_session_id(id);
     *request.mutable_cloud() = cloud;
+    request.set_include_features(include_features);
     return stub_->ComputeMaps(&context, request, response);
   }
 
@@ -313,6 +314,33 @@ TEST_F(RelevanceServer, FeatureSettingsAreReportedAndChangeTheLearnedFeatures) {
   };
   EXPECT_TRUE(differs(0, 15)) << "colour histogram";
   EXPECT_TRUE(differs(15, 33)) << "FPFH";
+}
+
+// include_features returns, per supervoxel, the very vector PostOutcome learns for it; without
+// it a response carries none (48 doubles per supervoxel are more bytes than the rest).
+TEST_F(RelevanceServer, MapsIncludeTheLearnedFeaturesOnlyOnRequest) {
+  const auto [id, token] = Create();
+  v1::ComputeMapsResponse plain;
+  ASSERT_TRUE(ComputeMaps(id, token, PackedTabletop(), &plain).ok());
+  ASSERT_GT(plain.supervoxels_size(), 1);
+  for (const v1::Supervoxel& sv : plain.supervoxels()) EXPECT_EQ(sv.features_size(), 0);
+
+  v1::ComputeMapsResponse maps;
+  ASSERT_TRUE(ComputeMaps(id, token, PackedTabletop(), &maps, /*include_features=*/true).ok());
+  ASSERT_EQ(maps.supervoxels_size(), plain.supervoxels_size());
+  for (const v1::Supervoxel& sv : maps.supervoxels()) {
+    ASSERT_EQ(sv.features_size(), 48) << "supervoxel " << sv.id();
+    for (const double value : sv.features()) {
+      EXPECT_GE(value, 0.0);
+      EXPECT_LE(value, 1.0);
+    }
+  }
+  const std::uint32_t pushed = 1;
+  v1::PostOutcomeResponse posted;
+  ASSERT_TRUE(Post(id, token, maps.frame_id(), pushed, v1::LABEL_MOVEABLE, "push-1", &posted).ok());
+  const auto& returned = maps.supervoxels(static_cast<int>(pushed)).features();
+  EXPECT_EQ(LearnedFeature(*stub_, id, token),
+            std::vector<double>(returned.begin(), returned.end()));
 }
 
 TEST_F(RelevanceServer, FeatureSessionsLearnRawVectors) {

@@ -5,7 +5,8 @@ target_include_directories(relmap_sim_analytic_scene PUBLIC ${PROJECT_SOURCE_DIR
 target_link_libraries(relmap_sim_analytic_scene PUBLIC relmap_sim_runner PRIVATE relmap_warnings)
 
 relmap_add_gtest(sim_runner_test
-  SOURCES analytic_scene_test.cpp curves_test.cpp experiment_options_test.cpp
+  SOURCES analytic_scene_test.cpp curves_test.cpp dataset_options_test.cpp
+          experiment_options_test.cpp
           ground_truth_test.cpp packed_cloud_test.cpp target_choice_test.cpp
   # perception only to decode packed clouds with the server's own decoder.
   LIBRARIES relmap_sim_analytic_scene relmap_sim_runner relmap_perception
@@ -29,4 +30,10 @@ if(TARGET relmap_sim_world)
   target_compile_definitions(sim_moveable_balls_test PRIVATE
     RELMAP_SERVER_BINARY="$<TARGET_FILE:relmap-server>")
   add_dependencies(sim_moveable_balls_test relmap-server)
+
+  # relmap-sim dataset: same bytes for the same seed, a file relmap-cmm reads.
+  add_test(NAME sim_dataset
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/dataset_test.sh $<TARGET_FILE:relmap-sim>
+                   $<TARGET_FILE:relmap-cmm> $<TARGET_FILE:relmap-server>)
+  set_tests_properties(sim_dataset PROPERTIES LABELS sim TIMEOUT 60)
 endif()

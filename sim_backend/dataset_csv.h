@@ -1,0 +1,21 @@
+// A dataset's rows on disk: the labelled CSV that relmap-cmm and relmap-bench-learning
+// read (server/tools/datasets/csv.h), and beside it each row's frame.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "dataset_frame.h"
+
+namespace relmap::sim {
+
+// `csv_path`: a header "label,f1,...,fp", then per row its label (0/1) and features,
+// each printed in the shortest form that reads back to the same double. `frames_path`:
+// a header "frame", then per row, in the same order, its frame. The frame stays out
+// of the CSV because every column after the label is a feature to its readers.
+// INTERNAL naming the file when one cannot be written.
+Status WriteDataset(const std::vector<DatasetRow>& rows, const std::string& csv_path,
+                    const std::string& frames_path);
+
+}  // namespace relmap::sim

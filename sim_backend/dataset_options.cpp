@@ -1,0 +1,79 @@
+// Flag parsing and the usage text of `relmap-sim dataset`, side by side.
+#include "dataset_options.h"
+
+#include <string_view>
+
+#include "flags.h"
+
+namespace relmap::sim {
+namespace {
+
+constexpr std::string_view kFlags[] = {"scene",  "frames", "seed",          "resolution",
+                                       "server", "out",    "server-binary", "frames-out"};
+
+// "640x480": both sides in [1, 4096], the limits of `relmap-sim render`.
+StatusOr<ImageSize> ParseResolution(const std::string& text) {
+  const std::size_t x = text.find('x');
+  const Status malformed = FlagError("resolution", "expects WIDTHxHEIGHT, got '" + text + "'");
+  if (x == std::string::npos) return malformed;
+  StatusOr<long long> width = ParseInteger("resolution", text.substr(0, x), 1, 4096);
+  StatusOr<long long> height = ParseInteger("resolution", text.substr(x + 1), 1, 4096);
+  if (!width.ok() || !height.ok()) return malformed;
+  return ImageSize{static_cast<std::uint32_t>(*width), static_cast<std::uint32_t>(*height)};
+}
+
+}  // namespace
+
+const char kDatasetUsage[] =
+    "usage: relmap-sim dataset --scene <name|file> --out FILE.csv [--frames 20] [--seed 1]\n"
+    "                          [--resolution WxH] [--frames-out FILE]\n"
+    "                          [--server host:port | --server-binary PATH]\n"
+    "  Re-spawns every object of the scene --frames times (the paper's simplified setup,\n"
+    "  the frames of `relmap-sim run --mode oracle --seed S`), has the server segment and\n"
+    "  describe each frame (ComputeMaps with include_features) and labels every usable\n"
+    "  supervoxel with the simulator's ground truth (1: >= 50 % of its points on a\n"
+    "  moveable body, 0: background).\n"
+    "  --out         rows 'label,f1,...,f48' under a header line, as relmap-cmm and\n"
+    "                relmap-bench-learning read them; the same seed gives the same bytes\n"
+    "  --frames-out  per row of --out, in the same order, its frame (1..N) under a header\n"
+    "                'frame' (default: FILE.csv.frames)\n"
+    "  --resolution  the camera's size, its field of view kept (default: the scene's)\n"
+    "  --server      as for `relmap-sim run`: without it relmap-sim starts its own server\n"
+    "Supervoxels with a non-finite feature value are left out and counted on stderr.\n"
+    "Exit codes: 0 success, 1 a failed run or server error, 2 bad arguments or files.\n";
+
+StatusOr<DatasetOptions> ParseDatasetOptions(int argc, const char* const* argv, int first) {
+  StatusOr<FlagValues> flags = ParseFlagPairs(argc, argv, first, kFlags);
+  if (!flags.ok()) return flags.status();
+  const auto value = [&](std::string_view name) { return FlagValue(*flags, name); };
+
+  DatasetOptions options;
+  if (Status required = RequireFlags(*flags, {"scene", "out"}); !required.ok()) return required;
+  options.scene = *value("scene");
+  options.out = *value("out");
+  options.frames_out = value("frames-out") ? *value("frames-out") : options.out + ".frames";
+  if (options.frames_out == options.out) {
+    return FlagError("frames-out", "must not be the --out file");
+  }
+  if (const std::string* frames = value("frames")) {
+    StatusOr<long long> count = ParseInteger("frames", *frames, 1, 1000000);
+    if (!count.ok()) return count.status();
+    options.frames = static_cast<int>(*count);
+  }
+  if (const std::string* seed = value("seed")) {
+    StatusOr<std::uint64_t> parsed = ParseUnsigned("seed", *seed);
+    if (!parsed.ok()) return parsed.status();
+    options.seed = *parsed;
+  }
+  if (const std::string* resolution = value("resolution")) {
+    StatusOr<ImageSize> parsed = ParseResolution(*resolution);
+    if (!parsed.ok()) return parsed.status();
+    options.resolution = *parsed;
+  }
+  if (Status read = ReadServerFlags(*flags, &options.server, &options.server_binary); !read.ok()) {
+    return read;
+  }
+  return options;
+}
+
+}  // namespace relmap::sim

@@ -1,0 +1,39 @@
+// The settings of one `relmap-sim dataset`: which scene, how many re-spawned frames
+// from which seed, at what image size, which server, and where the rows go.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "common/status.h"
+
+namespace relmap::sim {
+
+struct ImageSize {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+};
+
+struct DatasetOptions {
+  std::string scene;  // a scene name or a scene file
+  int frames = 20;
+  // The scene's instance and every frame's re-spawn (as `relmap-sim run --mode oracle
+  // --seed S` draws them for its first replication).
+  std::uint64_t seed = 1;
+  std::optional<ImageSize> resolution;  // unset: the scene file's camera
+  std::string server;                   // host:port; empty: start one
+  std::string server_binary;
+  std::string out;         // the labelled CSV (relmap-cmm's format)
+  std::string frames_out;  // per row its frame; default out + ".frames"
+};
+
+// The usage text of `relmap-sim dataset`.
+extern const char kDatasetUsage[];
+
+// argv[first..argc) as `--name value` pairs. INVALID_ARGUMENT naming the flag for an
+// unknown flag, a missing value, a malformed number or resolution, or a missing
+// --scene or --out.
+StatusOr<DatasetOptions> ParseDatasetOptions(int argc, const char* const* argv, int first);
+
+}  // namespace relmap::sim
