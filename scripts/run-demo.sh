@@ -42,16 +42,18 @@ run() {  # run <name> <relmap-cmm flags...>
 
 echo "relmap-cmm on a 48-d XOR-blobs stream (1000 training, 2000 test samples, seed $seed)"
 run corrected --variant corrected
-run corrected-lambda-1e-3 --variant corrected --regularization 1e-3
+run corrected_v1 --variant corrected_v1
+run corrected_v1-lambda-1e-3 --variant corrected_v1 --regularization 1e-3
 run paper2018 --variant paper2018
 run one-component-per-class --variant corrected --alpha 1
-run corrected-lambda-1e-3-active --variant corrected --regularization 1e-3 --active --budget 400
+run corrected-active --variant corrected --active --budget 400
 "$tools/relmap-plot" --out "$out/learning_curves.png" --x samples --y accuracy_at_0_5 \
   --title "48-d XOR blobs: test accuracy (seed $seed)" --x-label "training samples" \
   --y-label "accuracy at 0.5" --y-min 0.4 --y-max 1 \
-  "corrected=$out/corrected-curve.csv" "corrected lambda 1e-3=$out/corrected-lambda-1e-3-curve.csv" \
+  "corrected=$out/corrected-curve.csv" "corrected_v1=$out/corrected_v1-curve.csv" \
+  "corrected_v1 lambda 1e-3=$out/corrected_v1-lambda-1e-3-curve.csv" \
   "paper2018=$out/paper2018-curve.csv" "one per class=$out/one-component-per-class-curve.csv" \
-  "lambda 1e-3 active=$out/corrected-lambda-1e-3-active-curve.csv"
+  "corrected active=$out/corrected-active-curve.csv"
 echo "learning curves: $out/learning_curves.png"
 
 cloud=../shared/data/real/table_scene_mug_stereo_textured.pcd
