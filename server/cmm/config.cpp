@@ -14,6 +14,7 @@ CmmConfig CmmConfig::ForVariant(Variant variant) {
     config.acceptance = AcceptanceTest::kTrainingLikelihood;
     config.split_overlap = SplitOverlap::kOtherMean;
     config.prediction = Prediction::kPseudoCount;
+    config.max_merge_candidates = 0;
   }
   if (variant == Variant::kPaper2018) {
     config.switches.pseudo_density = true;
@@ -46,6 +47,10 @@ Status Validate(const CmmConfig& config) {
   if (!(config.prior_pseudo_samples >= 0.0) || !std::isfinite(config.prior_pseudo_samples)) {
     return InvalidArgumentError("prior_pseudo_samples must be >= 0 and finite, got " +
                                 std::to_string(config.prior_pseudo_samples));
+  }
+  if (config.max_merge_candidates < 0) {
+    return InvalidArgumentError("max_merge_candidates must be >= 0, got " +
+                                std::to_string(config.max_merge_candidates));
   }
   if (!(config.variance_floor > 0.0 && config.variance_floor <= 1.0)) {
     return InvalidArgumentError("variance_floor must lie in (0, 1], got " +

@@ -75,14 +75,25 @@ Status ApplyOption(std::string_view key, std::string_view value, CmmConfig& c) {
   if (key == "regularization") return ParseDouble(key, value, c.regularization);
   if (key == "pseudo_samples") return ParseDouble(key, value, c.prior_pseudo_samples);
   if (key == "variance_floor") return ParseDouble(key, value, c.variance_floor);
+  if (key == "max_merge_candidates") {
+    double n = 0.0;
+    if (Status status = ParseDouble(key, value, n); !status.ok()) return status;
+    if (n < 0.0 || n > 1e6 || n != std::floor(n)) {
+      return InvalidArgumentError("configuration option " + Option(key, value) +
+                                  " is not a count in [0, 1e6]");
+    }
+    c.max_merge_candidates = static_cast<int>(n);
+    return OkStatus();
+  }
   if (key == "covariance") return ParseWord(key, value, kCovariance, c.covariance);
   if (key == "acceptance") return ParseWord(key, value, kAcceptance, c.acceptance);
   if (key == "overlap") return ParseWord(key, value, kOverlap, c.split_overlap);
   if (key == "prediction") return ParseWord(key, value, kPrediction, c.prediction);
   if (key == "label_noise") return ParseWord(key, value, kOnOff, c.fit_label_noise);
-  return InvalidArgumentError("unknown configuration option '" + std::string(key) +
-                              "' (expected alpha, regularization, pseudo_samples, variance_floor, "
-                              "covariance, acceptance, overlap, prediction or label_noise)");
+  return InvalidArgumentError(
+      "unknown configuration option '" + std::string(key) +
+      "' (expected alpha, regularization, pseudo_samples, variance_floor, max_merge_candidates, "
+      "covariance, acceptance, overlap, prediction or label_noise)");
 }
 
 }  // namespace
@@ -121,6 +132,7 @@ std::string ConfigurationName(const CmmConfig& config) {
   number("regularization", config.regularization, preset.regularization);
   number("pseudo_samples", config.prior_pseudo_samples, preset.prior_pseudo_samples);
   number("variance_floor", config.variance_floor, preset.variance_floor);
+  number("max_merge_candidates", config.max_merge_candidates, preset.max_merge_candidates);
   const auto word = [&](std::string_view key, auto value, auto preset_value, const auto& words) {
     if (value != preset_value) changed.push_back(Option(key, WordOf(words, value)));
   };

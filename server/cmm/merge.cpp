@@ -23,8 +23,12 @@ bool CollaborativeMixtureModels::TryMerge(int label, int index, UpdateReport& re
       return false;
     }
   }
+  int evaluated = 0;
   for (int k : candidates) {
     if (!Intersects(mixture[index], mixture[k])) continue;
+    // Bounded work per update: the nearest intersecting candidates only; the
+    // random re-check of §3.4 reaches the others over later updates.
+    if (config_.max_merge_candidates > 0 && evaluated++ >= config_.max_merge_candidates) break;
     std::vector<Component> merged;
     merged.push_back(Component::Union(mixture[index], mixture[k], data_, config_, prior_or_null()));
     if (!ImprovesLikelihood(label, {index, k}, merged, report)) continue;

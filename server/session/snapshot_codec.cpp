@@ -75,6 +75,7 @@ void EncodeConfig(const cmm::CmmConfig& config, LittleEndianWriter& out) {
   out.U8(static_cast<std::uint8_t>(config.split_overlap));
   out.U8(static_cast<std::uint8_t>(config.prediction));
   out.U8(config.fit_label_noise ? 1 : 0);
+  out.U32(static_cast<std::uint32_t>(config.max_merge_candidates));
 }
 
 // Reads a one-byte enum of values 0 .. last.
@@ -88,15 +89,18 @@ bool ReadEnum(LittleEndianReader& in, Enum last, Enum& out) {
 
 Status DecodeGeneralisation(LittleEndianReader& in, cmm::CmmConfig& config) {
   std::uint8_t label_noise = 0;
+  std::uint32_t max_merge_candidates = 0;
   if (!ReadEnum(in, cmm::CovarianceEstimate::kPooledPrior, config.covariance) ||
       !in.F64(config.prior_pseudo_samples) || !in.F64(config.variance_floor) ||
       !ReadEnum(in, cmm::AcceptanceTest::kLeaveOneOut, config.acceptance) ||
       !ReadEnum(in, cmm::SplitOverlap::kOtherSamples, config.split_overlap) ||
       !ReadEnum(in, cmm::Prediction::kCalibrated, config.prediction) || !in.U8(label_noise) ||
-      label_noise > 1) {
+      label_noise > 1 || !in.U32(max_merge_candidates) ||
+      max_merge_candidates > static_cast<std::uint32_t>(std::numeric_limits<int>::max())) {
     return DataLossError("snapshot blob has a truncated or unknown generalisation option");
   }
   config.fit_label_noise = label_noise == 1;
+  config.max_merge_candidates = static_cast<int>(max_merge_candidates);
   return OkStatus();
 }
 

@@ -24,7 +24,8 @@ namespace relmap::session {
 // Version 2 (today's): variant 0 = corrected_v1 (what version 1 called
 // corrected), 1 = paper2018, 2 = corrected; after the switch bits the config
 // has u8 covariance, f64 prior_pseudo_samples, f64 variance_floor,
-// u8 acceptance, u8 split_overlap, u8 prediction, u8 fit_label_noise; after the
+// u8 acceptance, u8 split_overlap, u8 prediction, u8 fit_label_noise,
+// u32 max_merge_candidates; after the
 // merges, f64 κ of the prior, f64 temperature, f64 label noise. A version 1
 // blob decodes with its variant's preset for the options it lacks.
 // A snapshot whose vectors do not match its dimension and sample count →

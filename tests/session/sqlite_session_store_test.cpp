@@ -112,13 +112,13 @@ TEST(SnapshotCodec, CorrectedRoundTripsItsOptionsPriorAndCalibration) {
 }
 
 // The version 1 blob of a snapshot: the version word 1, none of version 2's
-// config options (21 bytes after the switch bits) and state (24 bytes before
+// config options (25 bytes after the switch bits) and state (24 bytes before
 // the checksum), and the checksum recomputed. Variant code 0 meant corrected.
 std::string VersionOneBlob(std::string blob) {
   constexpr std::size_t kConfigStart = 4 + 4;                // magic, version
   constexpr std::size_t kSwitchBitsEnd = kConfigStart + 26;  // u8 + 2 f64 + u64 + u8
   blob.replace(4, 4, std::string("\x01\x00\x00\x00", 4));
-  blob.erase(kSwitchBitsEnd, 21);
+  blob.erase(kSwitchBitsEnd, 25);
   blob.erase(blob.size() - 4 - 24, 24);
   blob.resize(blob.size() - 4);
   uLong crc = crc32(0L, Z_NULL, 0);

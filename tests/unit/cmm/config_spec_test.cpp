@@ -32,11 +32,15 @@ TEST(ParseConfiguration, ChangesTheNamedOptions) {
   EXPECT_EQ(c->prediction, Prediction::kPseudoCount);
   EXPECT_EQ(c->alpha, 1.0);
   EXPECT_EQ(c->covariance, CovarianceEstimate::kPooledPrior);  // unchanged
+  EXPECT_EQ(c->max_merge_candidates, 4);
+  EXPECT_EQ(ParseConfiguration("corrected:max_merge_candidates=0")->max_merge_candidates, 0);
+  EXPECT_EQ(ParseConfiguration("corrected_v1")->max_merge_candidates, 0);
 }
 
 TEST(ParseConfiguration, RefusesWhatItCannotRead) {
   for (const char* bad : {"nope", "corrected:bogus=1", "corrected:alpha", "corrected:alpha=x",
                           "corrected:overlap=sideways", "corrected:alpha=2",
+                          "corrected:max_merge_candidates=-1", "corrected:max_merge_candidates=1.5",
                           "corrected:covariance=ridge",  // the leave-one-out test needs the prior
                           "paper2018:covariance=prior"}) {  // the prior excludes the pseudo density
     EXPECT_EQ(ParseConfiguration(bad).status().code(), StatusCode::kInvalidArgument) << bad;
