@@ -5,6 +5,8 @@
 # --stream real=train.csv:test.csv). Results: out/bench-learning/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The batch reference (random forest, RBF SVM) runs on Debian's scikit-learn.
+./scripts/install-deps.sh python3-sklearn
 ./scripts/configure-build.sh
 mkdir -p out/bench-learning
 build/server/tools/relmap-bench-learning --out out/bench-learning --reference "$@" |

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages relmap builds and tests with. Idempotent: a
-# machine that already has every package is left alone (no apt-get update).
+# Installs the Debian 12 packages relmap builds and tests with, plus any named
+# as arguments (e.g. python3-sklearn for the learning benchmark's reference).
+# Idempotent: a machine that already has every package is left alone (no
+# apt-get update).
 set -euo pipefail
 
 packages=(
@@ -16,6 +18,7 @@ packages=(
   libpq-dev postgresql  # the shared session store and its tests
   nginx python3-yaml    # the cluster test's load balancer; deploy/ YAML checks
   file                  # cpack -G DEB (dpkg-shlibdeps)
+  "$@"
 )
 
 missing=()
