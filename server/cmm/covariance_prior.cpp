@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <vector>
@@ -99,9 +100,10 @@ Eigen::MatrixXd OracleApproximatingShrinkage(const Eigen::MatrixXd& s, double n)
 }
 
 int PriorSampleCount(int size) {
-  int power = 0;
-  for (int k = 1; k > 0 && k <= size; k <<= 1) power = k;
-  return power;
+  // 64-bit, so that doubling past 2^30 cannot overflow.
+  std::int64_t power = 0;
+  for (std::int64_t k = 1; k <= size; k <<= 1) power = k;
+  return static_cast<int>(power);
 }
 
 CovariancePrior ComputeCovariancePrior(const Dataset& data, int count, const CmmConfig& config) {

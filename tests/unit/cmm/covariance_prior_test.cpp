@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "cmm/component.h"
@@ -44,6 +45,7 @@ TEST(PriorCheckpoints, AreThePowersOfTwo) {
   EXPECT_EQ(PriorSampleCount(3), 2);
   EXPECT_EQ(PriorSampleCount(1000), 512);
   EXPECT_EQ(PriorSampleCount(1024), 1024);
+  EXPECT_EQ(PriorSampleCount(std::numeric_limits<int>::max()), 1 << 30);
 }
 
 Dataset TwoPairs() {
