@@ -13,26 +13,6 @@
 #include "cmm/mixture_density.h"
 
 namespace relmap::cmm {
-namespace {
-
-// Terms this far below the largest change the sum by less than a rounding
-// (as in mixture_density.cpp), so they are not exponentiated.
-constexpr double kNegligible = 50.0;
-
-// log Σ_t e^{terms[t]}; −∞ when every term is.
-double LogSumExp(std::span<const double> terms) {
-  double high = kNegativeInfinity;
-  for (const double t : terms) high = std::max(high, t);
-  if (high == kNegativeInfinity) return high;
-  double sum = 0.0;
-  for (const double t : terms) {
-    if (t - high > -kNegligible) sum += std::exp(t - high);
-  }
-  return high + std::log(sum);
-}
-
-}  // namespace
-
 const Eigen::VectorXd& CollaborativeMixtureModels::SampleLogPseudoCounts() {
   const int n = data_.size();
   const int done = static_cast<int>(sample_log_pseudo_count_.size());

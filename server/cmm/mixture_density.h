@@ -13,8 +13,16 @@ struct WeightedColumn {
   double log_weight;                    // log w_k
 };
 
+// Terms more than this below the largest are not exponentiated: e^−50 ≈ 2e−22,
+// so even a thousand of them change a sum (>= 1 relative to the largest term)
+// by less than one rounding.
+inline constexpr double kNegligibleLogTerm = 50.0;
+
 // Log-sum-exp over the components for each of the `n` points; −∞ where every
 // term is −∞ (no component, or only distant "hit" components).
 Eigen::VectorXd MixtureLogDensity(const std::vector<WeightedColumn>& columns, int n);
+
+// log Σ_t e^{terms[t]} of one point, the same two passes; −∞ when every term is.
+double LogSumExp(std::span<const double> terms);
 
 }  // namespace relmap::cmm
