@@ -64,7 +64,40 @@ Status Validate(const PerceptionConfig& config) {
   }
 
   const ChangeDetectorConfig& c = config.change;
-  if (!Positive(c.octree_resolution)) return Field("change.octree_resolution", "> 0");
+  // A noise model of metres and 1/m: anything beyond a metre of noise is not a camera.
+  const DepthNoiseModel& n = c.noise;
+  if (!NonNegative(n.sigma_base) || n.sigma_base > 1.0) {
+    return Field("change.noise.sigma_base", "in [0, 1] m");
+  }
+  if (!NonNegative(n.sigma_quadratic) || n.sigma_quadratic > 1.0) {
+    return Field("change.noise.sigma_quadratic", "in [0, 1] 1/m");
+  }
+  if (!NonNegative(n.reference_depth) || n.reference_depth > 10.0) {
+    return Field("change.noise.reference_depth", "in [0, 10] m");
+  }
+  if (!NonNegative(n.quantisation) || n.quantisation > 1.0) {
+    return Field("change.noise.quantisation", "in [0, 1] 1/m");
+  }
+  if (!Positive(c.tolerance_sigmas) || c.tolerance_sigmas > 10.0) {
+    return Field("change.tolerance_sigmas", "in (0, 10]");
+  }
+  if (c.search_window < 0 || c.search_window > 8) return Field("change.search_window", "in [0, 8]");
+  if (!Positive(c.min_vacated_fraction) || c.min_vacated_fraction > 1.0) {
+    return Field("change.min_vacated_fraction", "in (0, 1]");
+  }
+  if (c.min_vacated_points < 1) return Field("change.min_vacated_points", ">= 1");
+  // The registration's cost grows with its samples (and 4x as many on the other side).
+  if (c.motion_samples < 100 || c.motion_samples > 200000) {
+    return Field("change.motion_samples", "in [100, 200000]");
+  }
+  if (!(c.motion_max_distance > 0.0f && c.motion_max_distance <= 1.0f)) {
+    return Field("change.motion_max_distance", "in (0, 1] m");
+  }
+  // Finer cells than 1 mm are below any depth camera's noise and grow the octree without
+  // bound (1e-9 m exhausted memory).
+  if (!(c.octree_resolution >= 1e-3 && c.octree_resolution <= 1.0)) {
+    return Field("change.octree_resolution", "in [0.001, 1] m");
+  }
   if (c.min_points_per_cell < 0) return Field("change.min_points_per_cell", ">= 0");
   if (!NonNegative(c.depth_noise)) return Field("change.depth_noise", ">= 0");
   if (c.sor_mean_k < 1) return Field("change.sor_mean_k", ">= 1");
@@ -109,6 +142,17 @@ StatusOr<FpfhScheme> ParseFpfhScheme(std::string_view name) {
   if (name == "raw_points") return FpfhScheme::kRawPoints;
   return InvalidArgumentError("unknown FPFH scheme '" + std::string(name) +
                               "' (expected shared_voxels, exact_union or raw_points)");
+}
+
+std::string_view ChangeMethodName(ChangeMethod method) {
+  return method == ChangeMethod::kPaper2018 ? "paper2018" : "visibility";
+}
+
+StatusOr<ChangeMethod> ParseChangeMethod(std::string_view name) {
+  if (name == "visibility") return ChangeMethod::kVisibility;
+  if (name == "paper2018") return ChangeMethod::kPaper2018;
+  return InvalidArgumentError("unknown change detection method '" + std::string(name) +
+                              "' (expected visibility or paper2018)");
 }
 
 }  // namespace relmap::perception

@@ -86,8 +86,60 @@ struct FeatureConfig {
   double zero_below = 1e-3;
 };
 
-// §5: octree difference, outlier removal, ICP of the target onto the difference.
+// The depth noise of the camera, as a structured-light RGB-D sensor's (Kinect v1, Xtion):
+// axial standard deviation sigma(z) = base + quadratic * (z - reference)^2 (Nguyen, Izadi &
+// Lovell 2012, "Modeling Kinect Sensor Noise for Improved 3D Reconstruction and Tracking",
+// eq. 6, fitted for 10-60 degree incidence), and a depth step of quantisation * z^2 from the
+// 1/8-pixel disparity (Khoshelham & Elberink 2012, Sensors 12:1437: step = z^2 / (8 f b) with
+// f = 580 px and b = 7.5 cm). Another camera sets its own figures.
+struct DepthNoiseModel {
+  double sigma_base = 0.0012;                         // m
+  double sigma_quadratic = 0.0019;                    // 1/m
+  double reference_depth = 0.4;                       // m
+  double quantisation = 1.0 / (8.0 * 580.0 * 0.075);  // 1/m, ~0.0029
+
+  double Sigma(double z) const {
+    return sigma_base + sigma_quadratic * (z - reference_depth) * (z - reference_depth);
+  }
+  double Step(double z) const { return quantisation * z * z; }
+};
+
+// How a push is labelled (§5 and docs/method.md §5.1).
+enum class ChangeMethod {
+  // relmap's: each point of the target is tested against the after frame along its own
+  // pixel's ray, with the camera's noise model: still there, seen through (vacated) or
+  // hidden by something nearer (occluded). Moved iff enough of it is seen through.
+  kVisibility,
+  // The authors': octree difference, outlier removal, ICP of the target onto the difference.
+  kPaper2018,
+};
+
 struct ChangeDetectorConfig {
+  ChangeMethod method = ChangeMethod::kVisibility;
+
+  // kVisibility. A target point is still there when an after-point lies within
+  // tolerance_sigmas * sqrt(2) * sigma(z) + step(z) of it (both frames are noisy, and each
+  // is quantised) in a window of +-search_window pixels around its own (lateral noise is
+  // 0.8 px at 640x480 and incidences below 60 degrees, Nguyen et al. 2012, fig. 8: 2 px is
+  // 2.5 sigma; a smaller image has less).
+  DepthNoiseModel noise;
+  double tolerance_sigmas = 3.0;
+  int search_window = 2;  // pixels
+  // Moved iff at least this share of the target's points that the after frame shows
+  // (still there, vacated or occluded) was seen through, at least min_vacated_points of
+  // them, and the after frame shows at least half of the target. On the simulated setups with an
+  // ideal camera, pushes that moved their target left 0.44-1.0 of it vacated and pushes that did
+  // not 0-0.03 (docs/results.md §C).
+  double min_vacated_fraction = 0.2;
+  int min_vacated_points = 10;
+  // Register the after frame onto the before frame first (camera_motion.h): ICP of
+  // motion_samples after-points, pairs farther apart than motion_max_distance left out (what
+  // the push moved). 5 cm covers the 1.2 degrees and 1.3 cm of kinect_static_seq_* at 2 m.
+  bool compensate_camera_motion = true;
+  int motion_samples = 5000;
+  float motion_max_distance = 0.05f;  // m
+
+  // kPaper2018.
   double octree_resolution = 0.01;
   // An emptied cell counts only if it held at least this many before-points (0: the
   // authors' setting).
@@ -123,6 +175,8 @@ Status Validate(const PerceptionConfig& config);
 std::string_view ColourConversionName(ColourConversion conversion);
 StatusOr<ColourConversion> ParseColourConversion(std::string_view name);
 std::string_view FpfhSchemeName(FpfhScheme scheme);
+std::string_view ChangeMethodName(ChangeMethod method);
+StatusOr<ChangeMethod> ParseChangeMethod(std::string_view name);
 StatusOr<FpfhScheme> ParseFpfhScheme(std::string_view name);
 
 }  // namespace relmap::perception

@@ -60,6 +60,24 @@ void FeaturesToProto(const perception::FeatureConfig& in, v1::FeatureConfig* out
   out->set_fpfh_radius(in.fpfh_radius);
 }
 
+StatusOr<perception::ChangeMethod> ChangeMethodFromProto(int method) {
+  switch (method) {
+    case v1::CHANGE_METHOD_UNSPECIFIED:
+    case v1::CHANGE_METHOD_VISIBILITY:
+      return perception::ChangeMethod::kVisibility;
+    case v1::CHANGE_METHOD_PAPER2018:
+      return perception::ChangeMethod::kPaper2018;
+    default:
+      return InvalidArgumentError("config.change_detector.method " + std::to_string(method) +
+                                  " is not a ChangeMethod (0 to 2)");
+  }
+}
+
+v1::ChangeMethod ChangeMethodToProto(perception::ChangeMethod method) {
+  return method == perception::ChangeMethod::kPaper2018 ? v1::CHANGE_METHOD_PAPER2018
+                                                        : v1::CHANGE_METHOD_VISIBILITY;
+}
+
 }  // namespace
 
 StatusOr<cmm::Variant> VariantFromProto(int variant) {
@@ -125,6 +143,20 @@ StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& co
   if (cd.has_icp_max_iterations()) change.icp_max_iterations = cd.icp_max_iterations();
   if (cd.has_icp_max_correspondence()) change.icp_max_correspondence = cd.icp_max_correspondence();
   if (cd.has_max_fitness()) change.max_fitness = cd.max_fitness();
+  StatusOr<perception::ChangeMethod> method = ChangeMethodFromProto(cd.method());
+  if (!method.ok()) return method.status();
+  change.method = *method;
+  if (cd.has_noise_sigma_base()) change.noise.sigma_base = cd.noise_sigma_base();
+  if (cd.has_noise_sigma_quadratic()) change.noise.sigma_quadratic = cd.noise_sigma_quadratic();
+  if (cd.has_noise_reference_depth()) change.noise.reference_depth = cd.noise_reference_depth();
+  if (cd.has_noise_quantisation()) change.noise.quantisation = cd.noise_quantisation();
+  if (cd.has_tolerance_sigmas()) change.tolerance_sigmas = cd.tolerance_sigmas();
+  if (cd.has_search_window()) change.search_window = cd.search_window();
+  if (cd.has_min_vacated_fraction()) change.min_vacated_fraction = cd.min_vacated_fraction();
+  if (cd.has_min_vacated_points()) change.min_vacated_points = cd.min_vacated_points();
+  if (cd.has_compensate_camera_motion()) {
+    change.compensate_camera_motion = cd.compensate_camera_motion();
+  }
   StatusOr<perception::FeatureConfig> features = FeaturesFromProto(config.features());
   if (!features.ok()) return features.status();
   settings.perception.features = *features;
@@ -166,6 +198,16 @@ v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings) {
   cd->set_icp_max_iterations(change.icp_max_iterations);
   cd->set_icp_max_correspondence(change.icp_max_correspondence);
   cd->set_max_fitness(change.max_fitness);
+  cd->set_method(ChangeMethodToProto(change.method));
+  cd->set_noise_sigma_base(change.noise.sigma_base);
+  cd->set_noise_sigma_quadratic(change.noise.sigma_quadratic);
+  cd->set_noise_reference_depth(change.noise.reference_depth);
+  cd->set_noise_quantisation(change.noise.quantisation);
+  cd->set_tolerance_sigmas(change.tolerance_sigmas);
+  cd->set_search_window(change.search_window);
+  cd->set_min_vacated_fraction(change.min_vacated_fraction);
+  cd->set_min_vacated_points(change.min_vacated_points);
+  cd->set_compensate_camera_motion(change.compensate_camera_motion);
   FeaturesToProto(settings.perception.features, config.mutable_features());
   config.set_seed(settings.classifier.seed);
   config.set_feature_dimension(static_cast<std::uint32_t>(settings.feature_dimension));
@@ -190,6 +232,13 @@ void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence
   out->set_icp_converged(evidence.icp_converged);
   out->set_icp_fitness(evidence.icp_fitness);
   out->set_elapsed_ms(evidence.elapsed_ms);
+  out->set_method(ChangeMethodToProto(evidence.method));
+  out->set_target_points(evidence.target_points);
+  out->set_supported_points(evidence.supported_points);
+  out->set_vacated_points(evidence.vacated_points);
+  out->set_occluded_points(evidence.occluded_points);
+  out->set_camera_rotation_deg(evidence.camera_rotation_deg);
+  out->set_camera_translation_m(evidence.camera_translation_m);
 }
 
 StatusOr<perception::Cloud> CloudFromProto(const v1::Cloud& cloud,

@@ -155,12 +155,9 @@ StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uin
   }
   // The detector (tens of milliseconds) runs without the lock; the frame is
   // shared, so an eviction meanwhile does not pull it away.
-  std::vector<Eigen::Vector3f> target;
-  for (const auto& voxel : frame->segmentation.supervoxels[supervoxel_id].voxels) {
-    target.push_back(voxel.position);
-  }
   auto evidence =
-      perception::DetectChange(frame->cloud, after, target, settings_.perception.change);
+      perception::DetectChange(frame->cloud, after, frame->segmentation.supervoxels[supervoxel_id],
+                               settings_.perception.change);
   if (!evidence.ok()) return evidence.status();
   const int label = evidence->moved ? 1 : 0;
 

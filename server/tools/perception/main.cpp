@@ -136,18 +136,19 @@ int Change(int argc, char** argv) {
     if (!target || (sv.centroid - point).norm() < (target->centroid - point).norm()) target = &sv;
   }
   if (!target) return Fail("the before cloud has no supervoxel");
-  std::vector<Eigen::Vector3f> voxels;
-  for (const rp::Voxel& v : target->voxels) voxels.push_back(v.position);
-  auto e = rp::DetectChange(*before, *after, voxels, config.change);
+  auto e = rp::DetectChange(*before, *after, *target, config.change);
   if (!e.ok()) return Fail(e.status().message());
   std::printf(
-      "{\"moved\":%s,\"target_supervoxel\":%u,\"target_centroid\":[%.4f,%.4f,%.4f],"
-      "\"difference_points\":%zu,\"after_statistical\":%zu,\"after_radius\":%zu,"
-      "\"icp_ran\":%s,\"icp_converged\":%s,\"icp_fitness\":%.6g,\"change_ms\":%.1f}\n",
-      e->moved ? "true" : "false", target->id, target->centroid.x(), target->centroid.y(),
-      target->centroid.z(), e->difference_points, e->after_statistical, e->after_radius,
-      e->icp_ran ? "true" : "false", e->icp_converged ? "true" : "false",
-      e->icp_ran ? e->icp_fitness : -1.0, e->elapsed_ms);
+      "{\"moved\":%s,\"method\":\"%s\",\"target_supervoxel\":%u,"
+      "\"target_centroid\":[%.4f,%.4f,%.4f],\"target_points\":%zu,\"supported_points\":%zu,"
+      "\"vacated_points\":%zu,\"occluded_points\":%zu,\"difference_points\":%zu,"
+      "\"after_statistical\":%zu,\"after_radius\":%zu,\"icp_ran\":%s,\"icp_converged\":%s,"
+      "\"icp_fitness\":%.6g,\"change_ms\":%.1f}\n",
+      e->moved ? "true" : "false", std::string(rp::ChangeMethodName(e->method)).c_str(), target->id,
+      target->centroid.x(), target->centroid.y(), target->centroid.z(), e->target_points,
+      e->supported_points, e->vacated_points, e->occluded_points, e->difference_points,
+      e->after_statistical, e->after_radius, e->icp_ran ? "true" : "false",
+      e->icp_converged ? "true" : "false", e->icp_ran ? e->icp_fitness : -1.0, e->elapsed_ms);
   return 0;
 }
 

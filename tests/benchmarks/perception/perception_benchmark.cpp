@@ -80,8 +80,7 @@ void WholeFrame(benchmark::State& state, const Input* in, bool naive) {
 
 void ChangeDetection(benchmark::State& state, const Input* before, const Input* after) {
   const auto seg = rp::ExtractSupervoxels(before->cloud, rp::SupervoxelConfig{});
-  std::vector<Eigen::Vector3f> target;
-  for (const rp::Voxel& v : seg->supervoxels.front().voxels) target.push_back(v.position);
+  const rp::Supervoxel& target = seg->supervoxels.front();
   for (auto _ : state) {
     benchmark::DoNotOptimize(rp::DetectChange(before->cloud, after->cloud, target, {}));
   }
