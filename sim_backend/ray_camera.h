@@ -8,17 +8,12 @@
 #include <optional>
 
 #include "ode_world.h"
+#include "ray_casting.h"
 #include "scene_settings.h"
 #include "seeded_random.h"
 #include "simulated_scene.h"
 
 namespace relmap::sim {
-
-struct RayHit {
-  double distance = 0;     // metres along the ray
-  Eigen::Vector3d normal;  // unit, facing the ray's origin
-  dGeomID geom = nullptr;
-};
 
 class RayCamera {
  public:
