@@ -1,11 +1,12 @@
-// The camera: one ray per pixel, the nearest hit reported exactly.
+// The camera: one ray per pixel, reported exactly (ideal) or through the
+// structured-light sensor model.
 #include "ray_camera.h"
 
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "ode_math.h"
+#include "structured_light_camera.h"
 
 namespace relmap::sim {
 
@@ -28,6 +29,9 @@ std::optional<RayHit> RayCamera::Cast(OdeWorld& world, const Eigen::Vector3d& or
 
 CameraFrame RayCamera::Render(const CameraModel& camera, const LightSettings& light,
                               OdeWorld& world, SeededRandom& noise) {
+  if (camera.sensor == Sensor::kKinectV1) {
+    return RenderStructuredLight(camera, light, world, ray_, noise);
+  }
   CameraFrame frame;
   frame.width = camera.width;
   frame.height = camera.height;

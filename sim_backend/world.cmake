@@ -13,7 +13,7 @@ protobuf_generate(TARGET relmap_sim_scene_proto
 add_library(relmap_sim_world STATIC
   scene_settings.cpp scene_validation.cpp scene_file.cpp seeded_random.cpp textures.cpp
   kinect_noise_model.cpp ode_world.cpp ode_bodies.cpp ray_casting.cpp ray_camera.cpp
-  point_distance.cpp scene_dynamics.cpp
+  structured_light_camera.cpp point_distance.cpp scene_dynamics.cpp
   push_primitive.cpp ode_scene.cpp)
 # common/status.h (header-only) comes from server/; nothing of the server is linked.
 target_include_directories(relmap_sim_world PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}

@@ -1,15 +1,15 @@
-// The ideal camera reproduces the frames relmap-sim rendered before the
-// structured-light sensor model existed: checksums recorded from that renderer.
+// The ideal camera ("sensor": "ideal") reproduces the frames relmap-sim rendered
+// before the structured-light sensor model existed: checksums recorded from that
+// renderer (commit "sim tests: checksums of today's ideal camera frames").
+#include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
-#include <cstring>
-
+#include "scene_file.h"
 #include "world_test_scenes.h"
 
 namespace relmap::sim {
 namespace {
 
-using testing::kAxisCamera;
 using testing::LoadOrDie;
 
 // FNV-1a over every byte the frame carries (point coordinates as their float
@@ -33,7 +33,7 @@ std::uint64_t Checksum(const CameraFrame& frame) {
 // A box, a sphere and a mesh in front of a wall, textured, seen by the axis
 // camera with its depth noise on.
 std::string Tabletop(const std::string& camera_extra) {
-  return std::string(R"({"name": "Checksum", "camera": {
+  return std::string(R"({"name": "Checksum", "camera": {"sensor": "ideal",
       "position": {"x": 0, "y": 0, "z": 0}, "look_at": {"x": 1, "y": 0, "z": 0},
       "width": 65, "height": 49, "fx": 50, "fy": 50, "cx": 32, "cy": 24)") +
          camera_extra + R"(},
@@ -64,10 +64,14 @@ TEST(IdealSensor, DrawsTodaysDepthNoise) {
 }
 
 TEST(IdealSensor, RendersTodaysShippedSceneAt640x480) {
-  StatusOr<std::unique_ptr<OdeScene>> scene = OdeScene::Load("MoveableBricks1", 3);
-  ASSERT_TRUE(scene.ok()) << scene.status().message();
-  (*scene)->SetImageSize(640, 480);
-  EXPECT_EQ(Checksum((*scene)->Capture()), 5732283466208234087ull);
+  StatusOr<SceneFile> file = ReadSceneFile("MoveableBricks1");
+  ASSERT_TRUE(file.ok()) << file.status().message();
+  file->scene.mutable_camera()->set_sensor("ideal");
+  std::string json;
+  ASSERT_TRUE(google::protobuf::util::MessageToJsonString(file->scene, &json).ok());
+  auto scene = LoadOrDie(json, 3);
+  scene->SetImageSize(640, 480);
+  EXPECT_EQ(Checksum(scene->Capture()), 5732283466208234087ull);
 }
 
 }  // namespace
