@@ -10,15 +10,28 @@
 
 namespace relmap::sim {
 
-RayCamera::RayCamera() {
-  EnsureOdeReady();
-  ray_ = dCreateRay(nullptr, 1.0);
-  dGeomRaySetFirstContact(ray_, 0);
-  dGeomRaySetClosestHit(ray_, 1);  // the nearest hit on each geom (meshes)
-  dGeomRaySetBackfaceCull(ray_, 0);
+namespace {
+
+dGeomID NewRay() {
+  const dGeomID ray = dCreateRay(nullptr, 1.0);
+  dGeomRaySetFirstContact(ray, 0);
+  dGeomRaySetClosestHit(ray, 1);  // the nearest hit on each geom (meshes)
+  dGeomRaySetBackfaceCull(ray, 0);
+  return ray;
 }
 
-RayCamera::~RayCamera() { dGeomDestroy(ray_); }
+}  // namespace
+
+RayCamera::RayCamera() {
+  EnsureOdeReady();
+  ray_ = NewRay();
+  second_ray_ = NewRay();
+}
+
+RayCamera::~RayCamera() {
+  dGeomDestroy(second_ray_);
+  dGeomDestroy(ray_);
+}
 
 std::optional<RayHit> RayCamera::Cast(OdeWorld& world, const Eigen::Vector3d& origin,
                                       const Eigen::Vector3d& direction, double length,
@@ -30,7 +43,7 @@ std::optional<RayHit> RayCamera::Cast(OdeWorld& world, const Eigen::Vector3d& or
 CameraFrame RayCamera::Render(const CameraModel& camera, const LightSettings& light,
                               OdeWorld& world, SeededRandom& noise) {
   if (camera.sensor == Sensor::kKinectV1) {
-    return RenderStructuredLight(camera, light, world, ray_, noise);
+    return RenderStructuredLight(camera, light, world, {ray_, second_ray_}, noise);
   }
   CameraFrame frame;
   frame.width = camera.width;

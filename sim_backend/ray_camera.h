@@ -40,6 +40,8 @@ class RayCamera {
 
  private:
   dGeomID ray_ = nullptr;
+  // A second ray for the structured-light camera's second thread.
+  dGeomID second_ray_ = nullptr;
 };
 
 }  // namespace relmap::sim

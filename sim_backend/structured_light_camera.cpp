@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 #include <vector>
 
 #include "kinect_noise_model.h"
@@ -74,16 +75,32 @@ bool Lit(dGeomID ray, const std::vector<Candidate>& candidates, const Eigen::Vec
   return !Blocked(ray, candidates, projector, to_hit / length, length - kShadowTolerance);
 }
 
-std::vector<Sample> CastSamples(const CameraModel& camera, const LightSettings& light,
-                                OdeWorld& world, dGeomID ray) {
+// Runs `rows(first, step)` on the rows first, first + step, ... of a frame: on
+// two threads (rows 0, 2, 4, ... and 1, 3, 5, ...) when `two_threads`. Every
+// pixel's result depends on that pixel alone, so the split changes nothing.
+template <typename Rows>
+void ForRows(bool two_threads, const Rows& rows) {
+  if (!two_threads) {
+    rows(0, 1);
+    return;
+  }
+  std::thread odd([&] { rows(1, 2); });
+  rows(0, 2);
+  odd.join();
+}
+
+// Fills the rows first, first + step, ... of `samples` with `ray`. ODE's
+// ray-primitive colliders only read the geoms, whose poses and boxes
+// CandidatesOf has brought up to date, so two rays may collide at once.
+void CastRows(const CameraModel& camera, const LightSettings& light,
+              const std::vector<Candidate>& candidates, dGeomID ray, std::uint32_t first,
+              std::uint32_t step, std::vector<Sample>& samples) {
   const Eigen::Matrix3d world_from_camera = camera.world_from_camera.linear();
   const Eigen::Vector3d origin = camera.world_from_camera.translation();
   const Eigen::Vector3d projector =
       camera.world_from_camera * Eigen::Vector3d(camera.noise.baseline, 0, 0);
-  const std::vector<Candidate> candidates = CandidatesOf(world, /*static_only=*/false);
   std::vector<Entry> entries;
-  std::vector<Sample> samples(static_cast<std::size_t>(camera.width) * camera.height);
-  for (std::uint32_t v = 0; v < camera.height; ++v) {
+  for (std::uint32_t v = first; v < camera.height; v += step) {
     for (std::uint32_t u = 0; u < camera.width; ++u) {
       const Eigen::Vector3d ray_camera =
           Eigen::Vector3d((u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy, 1.0)
@@ -104,7 +121,6 @@ std::vector<Sample> CastSamples(const CameraModel& camera, const LightSettings& 
                      Lit(ray, candidates, projector, hit_world, hit->normal);
     }
   }
-  return samples;
 }
 
 // Per pixel, whether its 3x3 neighbourhood holds a disparity jump: the block
@@ -141,11 +157,70 @@ int Jittered(int at, double shift, int size) {
   return std::clamp(static_cast<int>(std::lround(at + shift)), 0, size - 1);
 }
 
+// The frame's pixels on the rows first, first + step, ...: each pixel's colour
+// from its own sample, its depth from a laterally jittered one, through the
+// sensor's failures and noise.
+struct PixelPass {
+  const CameraModel& camera;
+  const std::vector<Sample>& samples;
+  const std::vector<char>& edges;
+  std::uint64_t frame_seed;
+  Eigen::Vector3d gain;  // exposure times white balance, times 255
+  CameraFrame& frame;
+
+  void operator()(int first, int step) const {
+    const KinectNoiseModel& model = camera.noise;
+    const StructuredLightSettings& sensor = camera.structured_light;
+    constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
+    const int w = static_cast<int>(camera.width), h = static_cast<int>(camera.height);
+    for (int v = first; v < h; v += step) {
+      for (int u = 0; u < w; ++u) {
+        const std::size_t index = static_cast<std::size_t>(v) * w + u;
+        const PixelDraws draws(frame_seed, index);
+        const Sample& own = samples[index];
+        CameraPoint& point = frame.points[index];
+        point.x = point.y = point.z = kNan;
+        const Eigen::Vector2d axial_red = draws.Gaussians(kAxialAndRed);
+        // The colour camera sees what the pixel's ray meets, depth or not.
+        if (own.z > 0) {
+          const Eigen::Vector2d green_blue = draws.Gaussians(kGreenBlue);
+          const Eigen::Vector3d rgb =
+              own.rgb.cwiseProduct(gain) +
+              sensor.color_noise_sigma *
+                  Eigen::Vector3d(axial_red[1], green_blue[0], green_blue[1]);
+          point.r = ToByte(rgb.x() / 255.0);
+          point.g = ToByte(rgb.y() / 255.0);
+          point.b = ToByte(rgb.z() / 255.0);
+        }
+        // Lateral noise (Nguyen et al.): the depth comes from a jittered position.
+        const double sigma_l = LateralSigmaPixels(model, own.theta, camera.width);
+        const Eigen::Vector2d shift = sigma_l * draws.Gaussians(kLateral);
+        const std::size_t source =
+            static_cast<std::size_t>(Jittered(v, shift[1], h)) * w + Jittered(u, shift[0], w);
+        const Sample& s = samples[source];
+        if (!s.measurable) continue;
+        if (edges[source] && draws.Uniform01(kEdge) < sensor.edge_hole_probability) continue;
+        // Axial noise in the disparity domain, then the sensor's 1/8 px steps.
+        const double disparity = QuantisedDisparity(
+            model, DisparityOf(model, s.z) + DisparitySigma(model, s.z, s.theta) * axial_red[0]);
+        if (disparity <= 0) continue;
+        const double z = DepthOf(model, disparity);
+        if (z < camera.min_range || z > camera.max_range) continue;
+        // The sensor reports z: the point lies on the pixel's own ray.
+        point.x = static_cast<float>((u - camera.cx) / camera.fx * z);
+        point.y = static_cast<float>((v - camera.cy) / camera.fy * z);
+        point.z = static_cast<float>(z);
+        frame.body_ids[index] = s.body;
+      }
+    }
+  }
+};
+
 }  // namespace
 
 CameraFrame RenderStructuredLight(const CameraModel& camera, const LightSettings& light,
-                                  OdeWorld& world, dGeomID ray, SeededRandom& noise) {
-  const KinectNoiseModel& model = camera.noise;
+                                  OdeWorld& world, const std::array<dGeomID, 2>& rays,
+                                  SeededRandom& noise) {
   const StructuredLightSettings& sensor = camera.structured_light;
   const std::uint64_t frame_seed = noise.Below(~std::uint64_t{0});
   // Auto exposure and white balance drift from frame to frame.
@@ -155,7 +230,12 @@ CameraFrame RenderStructuredLight(const CameraModel& camera, const LightSettings
     gain[c] = 255.0 * exposure * std::max(0.0, 1.0 + sensor.white_balance_sigma * noise.Gaussian());
   }
 
-  const std::vector<Sample> samples = CastSamples(camera, light, world, ray);
+  const bool two_threads = !world.has_meshes();
+  const std::vector<Candidate> candidates = CandidatesOf(world, /*static_only=*/false);
+  std::vector<Sample> samples(static_cast<std::size_t>(camera.width) * camera.height);
+  ForRows(two_threads, [&](std::uint32_t first, std::uint32_t step) {
+    CastRows(camera, light, candidates, rays[first], first, step, samples);
+  });
   const std::vector<char> edges = DepthEdges(camera, samples);
 
   CameraFrame frame;
@@ -163,48 +243,8 @@ CameraFrame RenderStructuredLight(const CameraModel& camera, const LightSettings
   frame.height = camera.height;
   frame.points.assign(samples.size(), CameraPoint{});
   frame.body_ids.assign(samples.size(), kNoBody);
-  constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-  const int w = static_cast<int>(camera.width), h = static_cast<int>(camera.height);
-  for (int v = 0; v < h; ++v) {
-    for (int u = 0; u < w; ++u) {
-      const std::size_t index = static_cast<std::size_t>(v) * w + u;
-      const PixelDraws draws(frame_seed, index);
-      const Sample& own = samples[index];
-      CameraPoint& point = frame.points[index];
-      point.x = point.y = point.z = kNan;
-      const Eigen::Vector2d axial_red = draws.Gaussians(kAxialAndRed);
-      // The colour camera sees what the pixel's ray meets, depth or not.
-      if (own.z > 0) {
-        const Eigen::Vector2d green_blue = draws.Gaussians(kGreenBlue);
-        const Eigen::Vector3d rgb =
-            own.rgb.cwiseProduct(gain) +
-            sensor.color_noise_sigma * Eigen::Vector3d(axial_red[1], green_blue[0], green_blue[1]);
-        point.r = ToByte(rgb.x() / 255.0);
-        point.g = ToByte(rgb.y() / 255.0);
-        point.b = ToByte(rgb.z() / 255.0);
-      }
-      // Lateral noise (Nguyen et al.): the depth comes from a jittered position.
-      const double sigma_l = LateralSigmaPixels(model, own.theta, camera.width);
-      const Eigen::Vector2d shift = sigma_l * draws.Gaussians(kLateral);
-      const int su = Jittered(u, shift[0], w);
-      const int sv = Jittered(v, shift[1], h);
-      const std::size_t source = static_cast<std::size_t>(sv) * w + su;
-      const Sample& s = samples[source];
-      if (!s.measurable) continue;
-      if (edges[source] && draws.Uniform01(kEdge) < sensor.edge_hole_probability) continue;
-      // Axial noise in the disparity domain, then the sensor's 1/8 px steps.
-      const double disparity = QuantisedDisparity(
-          model, DisparityOf(model, s.z) + DisparitySigma(model, s.z, s.theta) * axial_red[0]);
-      if (disparity <= 0) continue;
-      const double z = DepthOf(model, disparity);
-      if (z < camera.min_range || z > camera.max_range) continue;
-      // The sensor reports z: the point lies on the pixel's own ray.
-      point.x = static_cast<float>((u - camera.cx) / camera.fx * z);
-      point.y = static_cast<float>((v - camera.cy) / camera.fy * z);
-      point.z = static_cast<float>(z);
-      frame.body_ids[index] = s.body;
-    }
-  }
+  const PixelPass pixels{camera, samples, edges, frame_seed, gain, frame};
+  ForRows(two_threads, [&](int first, int step) { pixels(first, step); });
   return frame;
 }
 

@@ -22,7 +22,7 @@ target_compile_definitions(relmap_sim_world
   PRIVATE RELMAP_SIM_SCENES_DIR="${CMAKE_CURRENT_SOURCE_DIR}/scenes")
 target_link_libraries(relmap_sim_world
   PUBLIC relmap_sim_scene_proto Eigen3::Eigen PkgConfig::ODE
-  PRIVATE protobuf::libprotobuf relmap_warnings)
+  PRIVATE protobuf::libprotobuf Threads::Threads relmap_warnings)
 
 # `relmap-sim scenes` and `relmap-sim render`, for the runner's executable.
 add_library(relmap_sim_scene_commands STATIC scene_commands.cpp)
