@@ -25,9 +25,7 @@ int Fail(int code, const std::string& message) {
 }
 
 StatusOr<std::unique_ptr<SimulatedScene>> LoadScene(const DatasetOptions& options) {
-  if (!options.resolution) return LoadOdeScene(options.scene, options.seed);
-  return LoadOdeSceneOfSize(options.scene, options.seed, options.resolution->width,
-                            options.resolution->height);
+  return LoadOdeSceneAt(options.scene, options.seed, options.resolution);
 }
 
 struct Collected {

@@ -11,17 +11,6 @@ namespace {
 constexpr std::string_view kFlags[] = {"scene",  "frames", "seed",          "resolution",
                                        "server", "out",    "server-binary", "frames-out"};
 
-// "640x480": both sides in [1, 4096], the limits of `relmap-sim render`.
-StatusOr<ImageSize> ParseResolution(const std::string& text) {
-  const std::size_t x = text.find('x');
-  const Status malformed = FlagError("resolution", "expects WIDTHxHEIGHT, got '" + text + "'");
-  if (x == std::string::npos) return malformed;
-  StatusOr<long long> width = ParseInteger("resolution", text.substr(0, x), 1, 4096);
-  StatusOr<long long> height = ParseInteger("resolution", text.substr(x + 1), 1, 4096);
-  if (!width.ok() || !height.ok()) return malformed;
-  return ImageSize{static_cast<std::uint32_t>(*width), static_cast<std::uint32_t>(*height)};
-}
-
 }  // namespace
 
 const char kDatasetUsage[] =

@@ -7,13 +7,9 @@
 #include <string>
 
 #include "common/status.h"
+#include "image_size.h"
 
 namespace relmap::sim {
-
-struct ImageSize {
-  std::uint32_t width = 0;
-  std::uint32_t height = 0;
-};
 
 struct DatasetOptions {
   std::string scene;  // a scene name or a scene file

@@ -18,7 +18,8 @@ constexpr std::string_view kFlags[] = {"scene",         "mode",
                                        "server-binary", "out",
                                        "variant",       "alpha",
                                        "sampling",      "parallel",
-                                       "snapshots",     "change-min-neighbours"};
+                                       "snapshots",     "change-min-neighbours",
+                                       "resolution"};
 
 // "1,10,100": iterations in [1, iterations], sorted, without repeats.
 StatusOr<std::vector<int>> SnapshotList(const std::string& text, int iterations) {
@@ -91,6 +92,7 @@ const char kRunUsage[] =
     "                      [--variant corrected|corrected_v1|paper2018] [--alpha A]\n"
     "                      [--sampling choice|random] [--parallel 2]\n"
     "                      [--snapshots 1,10,100|none] [--change-min-neighbours N]\n"
+    "                      [--resolution WxH]\n"
     "  --mode        oracle: every object re-spawned each iteration, the target labelled\n"
     "                with its ground truth (the paper's simplified setup); physical: the\n"
     "                push happens and the server's change detector labels it\n"
@@ -107,6 +109,8 @@ const char kRunUsage[] =
     "  --change-min-neighbours  physical mode: the change detector's radius filter keeps\n"
     "                points with this many neighbours in 1 cm (default 20 scaled by the\n"
     "                camera's point density against a 640x480 Kinect)\n"
+    "  --resolution  the camera's size, its field of view kept (default: the scene's;\n"
+    "                640x480 is the paper's Kinect)\n"
     "Writes DIR/replication-<r>.csv, DIR/summary.json, DIR/{accuracy,precision,recall,\n"
     "samples,components}.png and DIR/{relevance,choice}-<r>-<iteration>.png.\n"
     "Exit codes: 0 success, 1 a failed run or server error, 2 bad arguments or files.\n";
@@ -161,6 +165,11 @@ StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* 
                        "expects an integer in [1, 1000], got '" + *neighbours + "'");
     }
     options.change_min_neighbours = static_cast<int>(parsed);
+  }
+  if (const std::string* resolution = value("resolution")) {
+    StatusOr<ImageSize> parsed = ParseResolution(*resolution);
+    if (!parsed.ok()) return parsed.status();
+    options.resolution = *parsed;
   }
   if (Status parsed = ParseWord("sampling", value("sampling"), kSamplings, &options.sampling);
       !parsed.ok()) {

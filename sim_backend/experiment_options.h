@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/status.h"
+#include "image_size.h"
 #include "relmap/v1/relevance_service.pb.h"
 
 namespace relmap::sim {
@@ -48,6 +49,7 @@ struct ExperimentOptions {
   // many neighbours within 1 cm (ALGORITHMS §5, 20 for a 640×480 Kinect). Unset: 20
   // scaled by the camera's point density, (width / 640)², at least 3.
   std::optional<int> change_min_neighbours;
+  std::optional<ImageSize> resolution;  // unset: the scene file's camera
   // Replications running at once, each its own session on its own thread.
   int parallel = 2;
   // Iterations (1-based) whose relevance and choice maps are saved as PNGs.

@@ -81,4 +81,14 @@ StatusOr<std::uint64_t> ParseUnsigned(std::string_view flag, const std::string& 
   return value;
 }
 
+StatusOr<ImageSize> ParseResolution(const std::string& text) {
+  const std::size_t x = text.find('x');
+  const Status malformed = FlagError("resolution", "expects WIDTHxHEIGHT, got '" + text + "'");
+  if (x == std::string::npos) return malformed;
+  StatusOr<long long> width = ParseInteger("resolution", text.substr(0, x), 1, 4096);
+  StatusOr<long long> height = ParseInteger("resolution", text.substr(x + 1), 1, 4096);
+  if (!width.ok() || !height.ok()) return malformed;
+  return ImageSize{static_cast<std::uint32_t>(*width), static_cast<std::uint32_t>(*height)};
+}
+
 }  // namespace relmap::sim

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "common/status.h"
+#include "image_size.h"
 
 namespace relmap::sim {
 
@@ -42,5 +43,8 @@ StatusOr<long long> ParseInteger(std::string_view flag, const std::string& text,
                                  long long high);
 // A whole number >= 0.
 StatusOr<std::uint64_t> ParseUnsigned(std::string_view flag, const std::string& text);
+
+// --resolution "640x480": both sides in [1, 4096], the limits of `relmap-sim render`.
+StatusOr<ImageSize> ParseResolution(const std::string& text);
 
 }  // namespace relmap::sim

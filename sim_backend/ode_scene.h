@@ -8,7 +8,9 @@
 // Threads: an OdeScene is used by one thread at a time; different OdeScenes may
 // run on different threads at once (each has its own ODE world, space and step
 // threading). Scenes with triangle meshes share Debian ODE's process-wide mesh
-// collision cache, so their calls are serialised by a process-wide lock.
+// collision cache, so their calls are serialised by a process-wide lock. The
+// kinect_v1 camera's Capture renders on a second thread of its own, except in
+// scenes with meshes (structured_light_camera.h).
 #pragma once
 
 #include <cstdint>
@@ -32,7 +34,7 @@ struct SimBody;
 class OdeScene final : public SimulatedScene {
  public:
   // A shipped scene by name (e.g. "MoveableBalls") or a scene file by path; its
-  // objects respawned with `seed`, which also seeds the depth noise.
+  // objects respawned with `seed`, which also seeds the camera's noise.
   // NotFound / InvalidArgument (naming the file and field) on a bad scene.
   static StatusOr<std::unique_ptr<OdeScene>> Load(const std::string& name_or_path,
                                                   std::uint64_t seed);

@@ -1,5 +1,7 @@
 // The simulated RGB-D camera: one ray per pixel cast into an OdeWorld's space;
-// the nearest hit gives the point, its shaded colour and its body id.
+// the nearest hit gives the point, its shaded colour and its body id. The ideal
+// sensor reports that exactly; the kinect_v1 sensor through its noise and holes
+// (structured_light_camera.h).
 #pragma once
 
 #include <ode/ode.h>
@@ -8,17 +10,12 @@
 #include <optional>
 
 #include "ode_world.h"
+#include "ray_casting.h"
 #include "scene_settings.h"
 #include "seeded_random.h"
 #include "simulated_scene.h"
 
 namespace relmap::sim {
-
-struct RayHit {
-  double distance = 0;     // metres along the ray
-  Eigen::Vector3d normal;  // unit, facing the ray's origin
-  dGeomID geom = nullptr;
-};
 
 class RayCamera {
  public:
@@ -27,10 +24,12 @@ class RayCamera {
   RayCamera(const RayCamera&) = delete;
   RayCamera& operator=(const RayCamera&) = delete;
 
-  // An organized frame (see simulated_scene.h): points in the camera frame,
-  // colours as albedo * (ambient + (1 - ambient) max(0, n . l)), NaN and kNoBody
-  // where nothing is hit within [min_range, max_range]. `noise` draws the depth
-  // noise when camera.depth_noise_sigma > 0.
+  // An organized frame (see simulated_scene.h) from camera.sensor: points in the
+  // camera frame, colours as albedo * (ambient + (1 - ambient) max(0, n . l)),
+  // NaN and kNoBody at holes. The ideal sensor's holes are where nothing is hit
+  // within [min_range, max_range] along the ray, and `noise` draws its depth noise
+  // when camera.depth_noise_sigma > 0; the kinect_v1 sensor draws its noise and
+  // holes from `noise` too.
   CameraFrame Render(const CameraModel& camera, const LightSettings& light, OdeWorld& world,
                      SeededRandom& noise);
 
@@ -41,6 +40,8 @@ class RayCamera {
 
  private:
   dGeomID ray_ = nullptr;
+  // A second ray for the structured-light camera's second thread.
+  dGeomID second_ray_ = nullptr;
 };
 
 }  // namespace relmap::sim

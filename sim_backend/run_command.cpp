@@ -68,7 +68,11 @@ int RunExperimentCommand(int argc, char** argv) {
     return 2;
   }
   // The scene first: a bad name or file is found before a server starts.
-  if (StatusOr<std::unique_ptr<SimulatedScene>> scene = LoadOdeScene(options->scene, options->seed);
+  const std::optional<ImageSize> resolution = options->resolution;
+  const SceneFactory load = [resolution](const std::string& name_or_path, std::uint64_t seed) {
+    return LoadOdeSceneAt(name_or_path, seed, resolution);
+  };
+  if (StatusOr<std::unique_ptr<SimulatedScene>> scene = load(options->scene, options->seed);
       !scene.ok()) {
     return Fail(scene.status().code() == StatusCode::kUnimplemented ? 1 : 2,
                 scene.status().message());
@@ -84,8 +88,8 @@ int RunExperimentCommand(int argc, char** argv) {
   if (!server.ok()) {
     return Fail(server.status().code() == StatusCode::kNotFound ? 2 : 1, server.status().message());
   }
-  StatusOr<ExperimentRun> run = RunExperiment(*options, LoadOdeScene, *server->client,
-                                              server->address, server->launched != nullptr, stderr);
+  StatusOr<ExperimentRun> run = RunExperiment(*options, load, *server->client, server->address,
+                                              server->launched != nullptr, stderr);
   if (!run.ok()) return Fail(1, run.status().message());
   PrintResults(*options, *run);
   for (const ReplicationResult& r : run->replications) {

@@ -46,4 +46,11 @@ StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeSceneOfSize(const std::string& 
 
 #endif
 
+StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeSceneAt(const std::string& name_or_path,
+                                                         std::uint64_t seed,
+                                                         const std::optional<ImageSize>& size) {
+  if (!size) return LoadOdeScene(name_or_path, seed);
+  return LoadOdeSceneOfSize(name_or_path, seed, size->width, size->height);
+}
+
 }  // namespace relmap::sim

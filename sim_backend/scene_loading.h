@@ -5,9 +5,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "common/status.h"
+#include "image_size.h"
 #include "simulated_scene.h"
 
 namespace relmap::sim {
@@ -22,5 +24,9 @@ StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeSceneOfSize(const std::string& 
                                                              std::uint64_t seed,
                                                              std::uint32_t width,
                                                              std::uint32_t height);
+// LoadOdeSceneOfSize when `size` is given, else LoadOdeScene (the commands' --resolution).
+StatusOr<std::unique_ptr<SimulatedScene>> LoadOdeSceneAt(const std::string& name_or_path,
+                                                         std::uint64_t seed,
+                                                         const std::optional<ImageSize>& size);
 
 }  // namespace relmap::sim

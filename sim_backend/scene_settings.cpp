@@ -38,7 +38,74 @@ Eigen::Matrix3d CameraRotation(const Camera& camera) {
   return RotationFromRpyDeg(camera.rpy_deg()) * reference;
 }
 
+constexpr double kKinectMinRange = 0.5;  // metres, a Kinect v1's near limit
+constexpr double kMaxRange = 4.0;        // metres, a Kinect v1's far limit
+
+KinectNoiseModel ResolveNoise(const SensorNoise& n) {
+  KinectNoiseModel m = DefaultKinectNoise();
+  if (n.has_axial_constant()) m.axial_constant = n.axial_constant();
+  if (n.has_axial_quadratic()) m.axial_quadratic = n.axial_quadratic();
+  if (n.has_axial_offset()) m.axial_offset = n.axial_offset();
+  if (n.has_axial_grazing()) m.axial_grazing = n.axial_grazing();
+  if (n.has_lateral_constant_px()) m.lateral_constant_px = n.lateral_constant_px();
+  if (n.has_lateral_grazing_px()) m.lateral_grazing_px = n.lateral_grazing_px();
+  if (n.has_ir_focal_px()) m.ir_focal_px = n.ir_focal_px();
+  if (n.has_baseline()) m.baseline = n.baseline();
+  if (n.has_disparity_steps_per_px()) m.disparity_steps_per_px = n.disparity_steps_per_px();
+  return m;
+}
+
+StructuredLightSettings ResolveStructuredLight(const SensorNoise& n) {
+  StructuredLightSettings s = DefaultStructuredLight();
+  if (n.has_max_incidence_deg()) s.max_incidence = n.max_incidence_deg() * kRadiansPerDegree;
+  if (n.has_edge_disparity_jump_px()) s.edge_disparity_jump_px = n.edge_disparity_jump_px();
+  if (n.has_edge_hole_probability()) s.edge_hole_probability = n.edge_hole_probability();
+  if (n.has_color_noise_sigma()) s.color_noise_sigma = n.color_noise_sigma();
+  if (n.has_exposure_sigma()) s.exposure_sigma = n.exposure_sigma();
+  if (n.has_white_balance_sigma()) s.white_balance_sigma = n.white_balance_sigma();
+  return s;
+}
+
 }  // namespace
+
+KinectNoiseModel DefaultKinectNoise() {
+  return {
+      // Nguyen, Izadi & Lovell 2012 (3DIMPVT), the axial fit for 10° < θ < 60°
+      // and its grazing-angle term, and the lateral fit, at 640 x 480.
+      .axial_constant = 0.0012,
+      .axial_quadratic = 0.0019,
+      .axial_offset = 0.4,
+      .axial_grazing = 0.0001,
+      .lateral_constant_px = 0.8,
+      .lateral_grazing_px = 0.035,
+      // Khoshelham & Elberink 2012 (Sensors 12:1437): IR focal length ~580 px,
+      // baseline ~7.5 cm, disparity in 1/8 px: steps z² / 348 m, 7.2 cm at 5 m.
+      .ir_focal_px = 580.0,
+      .baseline = 0.075,
+      .disparity_steps_per_px = 8.0,
+      .reference_width_px = 640.0,
+  };
+}
+
+StructuredLightSettings DefaultStructuredLight() {
+  return {
+      // Nguyen et al.'s σz grows without bound as θ nears 90° (×25 at 75°): the
+      // block matcher finds no pattern there; past 75° the sensor returns nothing.
+      .max_incidence = 75.0 * kRadiansPerDegree,
+      // A plane tilted to 75° at 0.5 m changes disparity by b tan θ / z = 0.56 px
+      // per pixel, a 5 cm step at 1 m by 2.9 px: 1 px separates edges from slopes
+      // over the whole working range.
+      .edge_disparity_jump_px = 1.0,
+      // The correlation window straddling an edge matches either side or neither:
+      // edge pixels drop out in about half the frames, so edges flicker and fray.
+      .edge_hole_probability = 0.5,
+      // Not from a paper: a few levels of sensor noise and a few per cent of
+      // auto-exposure and white-balance drift, as a consumer webcam shows.
+      .color_noise_sigma = 2.0,
+      .exposure_sigma = 0.03,
+      .white_balance_sigma = 0.02,
+  };
+}
 
 CameraModel CameraModel::Resized(std::uint32_t new_width, std::uint32_t new_height) const {
   CameraModel resized = *this;
@@ -87,9 +154,13 @@ CameraModel ResolveCamera(const Camera& camera) {
   model.cy = camera.has_cy() ? camera.cy() : 0.5 * (model.height - 1.0);
   model.world_from_camera.linear() = CameraRotation(camera);
   model.world_from_camera.translation() = ToEigen(camera.position());
+  model.sensor = camera.sensor() == "ideal" ? Sensor::kIdeal : Sensor::kKinectV1;
+  const bool ideal = model.sensor == Sensor::kIdeal;
   model.depth_noise_sigma = camera.has_depth_noise_sigma() ? camera.depth_noise_sigma() : 0.0;
-  model.min_range = camera.has_min_range() ? camera.min_range() : 0.0;
-  model.max_range = camera.has_max_range() ? camera.max_range() : 4.0;
+  model.min_range = camera.has_min_range() ? camera.min_range() : (ideal ? 0.0 : kKinectMinRange);
+  model.max_range = camera.has_max_range() ? camera.max_range() : kMaxRange;
+  model.noise = ResolveNoise(camera.sensor_noise());
+  model.structured_light = ResolveStructuredLight(camera.sensor_noise());
   return model;
 }
 

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 
+#include "kinect_noise_model.h"
 #include "scene_schema.pb.h"
 
 namespace relmap::sim {
@@ -26,6 +27,26 @@ struct Material {
   double rolling_friction = 0.001;  // metres (lever arm of the normal force)
 };
 
+enum class Sensor {
+  kIdeal,     // the exact depth along each ray
+  kKinectV1,  // the structured-light model (structured_light_camera.h)
+};
+
+// The structured-light camera's failures and colour, beside its depth noise
+// (angles in radians, pixels at the sensor's native width).
+struct StructuredLightSettings {
+  double max_incidence = 0;           // rad: steeper surfaces are holes
+  double edge_disparity_jump_px = 0;  // per native pixel of separation
+  double edge_hole_probability = 0;
+  double color_noise_sigma = 0;  // 8-bit levels
+  double exposure_sigma = 0;
+  double white_balance_sigma = 0;
+};
+
+// The Kinect v1's figures (values and sources in scene_settings.cpp).
+KinectNoiseModel DefaultKinectNoise();
+StructuredLightSettings DefaultStructuredLight();
+
 // A pinhole camera: intrinsics in pixels, pose as world_from_camera (camera frame
 // x right, y down, z forward).
 struct CameraModel {
@@ -33,9 +54,13 @@ struct CameraModel {
   std::uint32_t height = 240;
   double fx = 262.5, fy = 262.5, cx = 159.5, cy = 119.5;
   Eigen::Isometry3d world_from_camera = Eigen::Isometry3d::Identity();
-  double depth_noise_sigma = 0;  // metres along the ray
-  double min_range = 0;          // metres
+  Sensor sensor = Sensor::kKinectV1;
+  double depth_noise_sigma = 0;  // ideal only: metres along the ray
+  double min_range = 0;          // metres (ideal: along the ray; kinect_v1: depth z)
   double max_range = 4.0;        // metres
+  // kinect_v1 only. The IR projector sits noise.baseline along the camera's +x.
+  KinectNoiseModel noise = DefaultKinectNoise();
+  StructuredLightSettings structured_light = DefaultStructuredLight();
 
   // The same field of view at another image size.
   CameraModel Resized(std::uint32_t new_width, std::uint32_t new_height) const;

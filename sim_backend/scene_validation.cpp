@@ -295,6 +295,38 @@ void CheckShape(Checker& check, const std::string& path, const Body& body, BodyR
   }
 }
 
+void CheckSensorNoise(Checker& check, const std::string& path, const SensorNoise& n) {
+  const auto non_negative = [&](const char* name, bool has, double v, double max) {
+    if (has) check.NonNegative(path + "." + name, v, max);
+  };
+  non_negative("axial_constant", n.has_axial_constant(), n.axial_constant(), 0.5);
+  non_negative("axial_quadratic", n.has_axial_quadratic(), n.axial_quadratic(), 0.5);
+  non_negative("axial_offset", n.has_axial_offset(), n.axial_offset(), 10);
+  non_negative("axial_grazing", n.has_axial_grazing(), n.axial_grazing(), 0.5);
+  non_negative("lateral_constant_px", n.has_lateral_constant_px(), n.lateral_constant_px(), 20);
+  non_negative("lateral_grazing_px", n.has_lateral_grazing_px(), n.lateral_grazing_px(), 20);
+  if (n.has_ir_focal_px()) check.Positive(path + ".ir_focal_px", n.ir_focal_px(), 1e5);
+  if (n.has_baseline()) check.Positive(path + ".baseline", n.baseline(), 1);
+  if (n.has_disparity_steps_per_px()) {
+    check.Positive(path + ".disparity_steps_per_px", n.disparity_steps_per_px(), 1024);
+  }
+  if (n.has_max_incidence_deg()) {
+    const double v = n.max_incidence_deg();
+    if (check.Finite(path + ".max_incidence_deg", v) && (v <= 0 || v >= 90)) {
+      check.Fail(path + ".max_incidence_deg", "must be in (0, 90) degrees, got " + Num(v));
+    }
+  }
+  if (n.has_edge_disparity_jump_px()) {
+    check.Positive(path + ".edge_disparity_jump_px", n.edge_disparity_jump_px(), 1000);
+  }
+  if (n.has_edge_hole_probability()) {
+    check.InRange(path + ".edge_hole_probability", n.edge_hole_probability(), 0, 1);
+  }
+  non_negative("color_noise_sigma", n.has_color_noise_sigma(), n.color_noise_sigma(), 255);
+  non_negative("exposure_sigma", n.has_exposure_sigma(), n.exposure_sigma(), 0.5);
+  non_negative("white_balance_sigma", n.has_white_balance_sigma(), n.white_balance_sigma(), 0.5);
+}
+
 void CheckCamera(Checker& check, const Camera& camera) {
   const std::string path = "camera";
   if (!camera.has_position()) {
@@ -336,8 +368,20 @@ void CheckCamera(Checker& check, const Camera& camera) {
     check.InRange(path + ".horizontal_fov_deg", camera.horizontal_fov_deg(), 1, 170);
     if (camera.has_fx()) check.Fail(path, "needs fx or horizontal_fov_deg, not both");
   }
+  const bool ideal = camera.sensor() == "ideal";
+  if (!ideal && !camera.sensor().empty() && camera.sensor() != "kinect_v1") {
+    check.Fail(path + ".sensor",
+               "must be \"kinect_v1\" or \"ideal\", got \"" + camera.sensor() + "\"");
+  }
   if (camera.has_depth_noise_sigma()) {
+    check.NotAllowed(path + ".depth_noise_sigma", !ideal,
+                     "to the kinect_v1 sensor, which draws its own noise (only with \"sensor\": "
+                     "\"ideal\"; tune camera.sensor_noise instead)");
     check.NonNegative(path + ".depth_noise_sigma", camera.depth_noise_sigma(), 0.5);
+  }
+  if (camera.has_sensor_noise()) {
+    check.NotAllowed(path + ".sensor_noise", ideal, "to the ideal sensor");
+    CheckSensorNoise(check, path + ".sensor_noise", camera.sensor_noise());
   }
   const CameraModel model = ResolveCamera(camera);
   check.NonNegative(path + ".min_range", model.min_range);

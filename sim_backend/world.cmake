@@ -12,7 +12,8 @@ protobuf_generate(TARGET relmap_sim_scene_proto
 
 add_library(relmap_sim_world STATIC
   scene_settings.cpp scene_validation.cpp scene_file.cpp seeded_random.cpp textures.cpp
-  ode_world.cpp ode_bodies.cpp ray_camera.cpp point_distance.cpp scene_dynamics.cpp
+  kinect_noise_model.cpp ode_world.cpp ode_bodies.cpp ray_casting.cpp ray_camera.cpp
+  structured_light_camera.cpp point_distance.cpp scene_dynamics.cpp
   push_primitive.cpp ode_scene.cpp)
 # common/status.h (header-only) comes from server/; nothing of the server is linked.
 target_include_directories(relmap_sim_world PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}
@@ -21,7 +22,7 @@ target_compile_definitions(relmap_sim_world
   PRIVATE RELMAP_SIM_SCENES_DIR="${CMAKE_CURRENT_SOURCE_DIR}/scenes")
 target_link_libraries(relmap_sim_world
   PUBLIC relmap_sim_scene_proto Eigen3::Eigen PkgConfig::ODE
-  PRIVATE protobuf::libprotobuf relmap_warnings)
+  PRIVATE protobuf::libprotobuf Threads::Threads relmap_warnings)
 
 # `relmap-sim scenes` and `relmap-sim render`, for the runner's executable.
 add_library(relmap_sim_scene_commands STATIC scene_commands.cpp)

@@ -89,5 +89,21 @@ TEST(ExperimentOptions, TheChangeDetectorsNeighbourCountIsAPositiveInteger) {
   }
 }
 
+TEST(ExperimentOptions, TheResolutionIsWidthByHeightOrTheScenes) {
+  const StatusOr<ExperimentOptions> given =
+      Parse({"--scene", "s", "--out", "d", "--resolution", "640x480"});
+  ASSERT_TRUE(given.ok()) << given.status().message();
+  ASSERT_TRUE(given->resolution.has_value());
+  EXPECT_EQ(given->resolution->width, 640u);
+  EXPECT_EQ(given->resolution->height, 480u);
+  EXPECT_FALSE(Parse({"--scene", "s", "--out", "d"})->resolution.has_value());
+  for (const char* bad : {"640", "640x0", "x480", "640x480x3", "5000x480"}) {
+    const StatusOr<ExperimentOptions> refused =
+        Parse({"--scene", "s", "--out", "d", "--resolution", bad});
+    EXPECT_EQ(refused.status().code(), StatusCode::kInvalidArgument) << bad;
+    EXPECT_NE(refused.status().message().find("--resolution"), std::string::npos) << bad;
+  }
+}
+
 }  // namespace
 }  // namespace relmap::sim

@@ -1,5 +1,5 @@
-// The ray-cast camera against analytic geometry: depths, the camera frame's
-// axes, ground-truth ids, holes and depth noise.
+// The ideal ray-cast camera against analytic geometry: depths, the camera
+// frame's axes, ground-truth ids, holes and depth noise.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -133,9 +133,10 @@ std::string WallScene(const std::string& camera, double wall_x) {
 }
 
 TEST(RayCamera, RaysBeyondTheMaximumRangeAreHoles) {
-  auto scene = LoadOrDie(WallScene(R"({"position": {}, "look_at": {"x": 1}, "width": 65,
+  auto scene =
+      LoadOrDie(WallScene(R"({"sensor": "ideal", "position": {}, "look_at": {"x": 1}, "width": 65,
       "height": 49, "fx": 50, "max_range": 2.0})",
-                                   3.0));
+                          3.0));
   const CameraFrame frame = scene->Capture();
   for (const CameraPoint& hole : frame.points) {
     EXPECT_TRUE(std::isnan(hole.x) && std::isnan(hole.y) && std::isnan(hole.z));
@@ -144,9 +145,10 @@ TEST(RayCamera, RaysBeyondTheMaximumRangeAreHoles) {
 }
 
 TEST(RayCamera, DepthNoiseIsGaussianAlongTheRayAndSeeded) {
-  const std::string noisy = WallScene(R"({"position": {}, "look_at": {"x": 1}, "width": 65,
+  const std::string noisy =
+      WallScene(R"({"sensor": "ideal", "position": {}, "look_at": {"x": 1}, "width": 65,
       "height": 49, "fx": 50, "depth_noise_sigma": 0.01})",
-                                      1.05);
+                1.05);
   auto a = LoadOrDie(noisy, 7);
   auto b = LoadOrDie(noisy, 7);
   const CameraFrame fa = a->Capture();

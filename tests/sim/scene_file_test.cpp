@@ -172,5 +172,47 @@ TEST(SceneFile, TheCameraNeedsExactlyOneOrientation) {
   EXPECT_THAT(ErrorOf(both), HasSubstr("camera needs exactly one of look_at and rpy_deg"));
 }
 
+// The minimal scene with `fields` added to its camera.
+std::string CameraWith(const std::string& fields) {
+  std::string json = SceneWith(kBall);
+  const std::string look_at = R"("look_at": {"x": 0, "y": 0, "z": 0})";
+  return json.replace(json.find(look_at), look_at.size(), look_at + ", " + fields);
+}
+
+TEST(SceneFile, TheCameraIsAKinectOrIdeal) {
+  EXPECT_TRUE(ParseScene(CameraWith(R"("sensor": "ideal")"), "Tiny.json").ok());
+  EXPECT_TRUE(ParseScene(CameraWith(R"("sensor": "kinect_v1")"), "Tiny.json").ok());
+  EXPECT_THAT(ErrorOf(CameraWith(R"("sensor": "kinect_v2")")),
+              HasSubstr("Tiny.json: camera.sensor must be \"kinect_v1\" or \"ideal\", got "
+                        "\"kinect_v2\""));
+}
+
+TEST(SceneFile, DepthNoiseSigmaIsTheIdealSensorsOnly) {
+  EXPECT_TRUE(
+      ParseScene(CameraWith(R"("sensor": "ideal", "depth_noise_sigma": 0.01)"), "Tiny.json").ok());
+  EXPECT_THAT(ErrorOf(CameraWith(R"("depth_noise_sigma": 0.01)")),
+              HasSubstr("camera.depth_noise_sigma does not apply to the kinect_v1 sensor"));
+  EXPECT_THAT(ErrorOf(CameraWith(R"("sensor": "ideal", "sensor_noise": {"baseline": 0.05})")),
+              HasSubstr("camera.sensor_noise does not apply to the ideal sensor"));
+}
+
+TEST(SceneFile, SensorNoiseFiguresAreChecked) {
+  EXPECT_TRUE(ParseScene(CameraWith(R"("sensor_noise": {"axial_constant": 0.002,
+      "baseline": 0.05, "max_incidence_deg": 80, "edge_hole_probability": 1})"),
+                         "Tiny.json")
+                  .ok());
+  const std::string message = ErrorOf(CameraWith(R"("sensor_noise": {"axial_quadratic": -1,
+      "baseline": 0, "max_incidence_deg": 90, "edge_hole_probability": 1.5,
+      "disparity_steps_per_px": 0})"));
+  EXPECT_THAT(message, HasSubstr("camera.sensor_noise.axial_quadratic must be >= 0, got -1"));
+  EXPECT_THAT(message, HasSubstr("camera.sensor_noise.baseline must be > 0, got 0"));
+  EXPECT_THAT(
+      message,
+      HasSubstr("camera.sensor_noise.max_incidence_deg must be in (0, 90) degrees, got 90"));
+  EXPECT_THAT(message,
+              HasSubstr("camera.sensor_noise.edge_hole_probability must be in [0, 1], got 1.5"));
+  EXPECT_THAT(message, HasSubstr("camera.sensor_noise.disparity_steps_per_px must be > 0, got 0"));
+}
+
 }  // namespace
 }  // namespace relmap::sim

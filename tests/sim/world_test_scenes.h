@@ -13,8 +13,9 @@ namespace relmap::sim::testing {
 
 // A camera at the world origin looking along +x (so the camera's x is world -y,
 // its y is world -z), 65 x 49 pixels, fx = fy = 50, principal point (32, 24):
-// pixel (u, v) looks along ((u - 32) / 50, (v - 24) / 50, 1).
-inline constexpr char kAxisCamera[] = R"("camera": {
+// pixel (u, v) looks along ((u - 32) / 50, (v - 24) / 50, 1). The ideal sensor,
+// so that every depth is exact.
+inline constexpr char kAxisCamera[] = R"("camera": {"sensor": "ideal",
     "position": {"x": 0, "y": 0, "z": 0}, "look_at": {"x": 1, "y": 0, "z": 0},
     "width": 65, "height": 49, "fx": 50, "fy": 50, "cx": 32, "cy": 24})";
 
