@@ -23,7 +23,8 @@ paper=(MoveableBalls MoveableBricks1 MoveableBricks2 WhiteMoveableBalls WhiteMov
 mkdir -p "$out"
 
 for scene in "${benchmarks[@]}" "${paper[@]}"; do
-  file=$scene
+  # By path: a binary's built-in scenes directory may be another checkout's.
+  file=sim_backend/scenes/$scene.json
   [ -f "sim_backend/scenes/benchmark/$scene.json" ] && file=sim_backend/scenes/benchmark/$scene.json
   for pair in "${pairs[@]}"; do
     for seed in ${pair/:/ }; do
