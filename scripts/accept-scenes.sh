@@ -17,7 +17,7 @@ fi
 out=${OUT:-out/scene-acceptance}
 frames=${FRAMES:-12}
 pairs=(1:2 3:4)
-benchmarks=(ShelfClutter)
+benchmarks=(ShelfClutter Workbench KitchenCounter)
 paper=(MoveableBalls MoveableBricks1 MoveableBricks2 WhiteMoveableBalls WhiteMoveableBricks
   SimKitchen)
 mkdir -p "$out"
