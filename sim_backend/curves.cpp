@@ -20,7 +20,8 @@ const char kIterationCsvHeader[] =
     "moveable_samples,non_moveable_samples,moveable_components,non_moveable_components,"
     "push_executed,push_target_body,push_target_moved,push_moved_bodies,push_simulated_s,"
     "respawn_ms,capture_ms,maps_ms,server_maps_ms,evaluation_ms,snapshot_ms,push_ms,outcome_ms,"
-    "iteration_ms";
+    "iteration_ms,change_target_points,change_supported_points,change_vacated_points,"
+    "change_occluded_points,change_ms";
 
 namespace {
 
@@ -91,6 +92,14 @@ void WriteConfig(const ExperimentOptions& options, const RunFacts& facts, JsonWr
   json.Key("variant").String(VariantName(options.variant));
   json.Key("alpha").Number(options.alpha);
   json.Key("sampling").String(SamplingName(options.sampling));
+  json.Key("change_method").String(ChangeMethodName(options.change_method));
+  json.Key("resolution");
+  if (options.resolution) {
+    json.String(std::to_string(options.resolution->width) + "x" +
+                std::to_string(options.resolution->height));
+  } else {
+    json.Null();
+  }
   json.Key("parallel").Integer(options.parallel);
   json.Key("snapshots").BeginArray();
   for (const int snapshot : options.snapshots) json.Integer(snapshot);
@@ -221,6 +230,13 @@ void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out) 
          {t.respawn_ms, t.capture_ms, t.maps_ms, t.server_maps_ms, t.evaluation_ms, t.snapshot_ms,
           t.push_ms, t.outcome_ms, t.iteration_ms}) {
       out << ',' << Milliseconds(ms);
+    }
+    if (i.change) {
+      out << ',' << i.change->target_points << ',' << i.change->supported_points << ','
+          << i.change->vacated_points << ',' << i.change->occluded_points << ','
+          << Milliseconds(i.change->elapsed_ms);
+    } else {
+      out << ",,,,,";
     }
     out << '\n';
   }

@@ -19,7 +19,7 @@ constexpr std::string_view kFlags[] = {"scene",         "mode",
                                        "variant",       "alpha",
                                        "sampling",      "parallel",
                                        "snapshots",     "change-min-neighbours",
-                                       "resolution"};
+                                       "resolution",    "change-method"};
 
 // "1,10,100": iterations in [1, iterations], sorted, without repeats.
 StatusOr<std::vector<int>> SnapshotList(const std::string& text, int iterations) {
@@ -46,6 +46,8 @@ constexpr Words<LabellingMode> kModes = {
     {{LabellingMode::kOracle, "oracle"}, {LabellingMode::kPhysical, "physical"}}};
 constexpr Words<TargetSampling> kSamplings = {
     {{TargetSampling::kChoice, "choice"}, {TargetSampling::kRandom, "random"}}};
+constexpr Words<v1::ChangeMethod> kChangeMethods = {
+    {{v1::CHANGE_METHOD_VISIBILITY, "visibility"}, {v1::CHANGE_METHOD_PAPER2018, "paper2018"}}};
 constexpr Words<v1::ClassifierVariant, 3> kVariants = {
     {{v1::CLASSIFIER_VARIANT_CORRECTED, "corrected"},
      {v1::CLASSIFIER_VARIANT_CORRECTED_V1, "corrected_v1"},
@@ -92,7 +94,7 @@ const char kRunUsage[] =
     "                      [--variant corrected|corrected_v1|paper2018] [--alpha A]\n"
     "                      [--sampling choice|random] [--parallel 2]\n"
     "                      [--snapshots 1,10,100|none] [--change-min-neighbours N]\n"
-    "                      [--resolution WxH]\n"
+    "                      [--resolution WxH] [--change-method visibility|paper2018]\n"
     "  --mode        oracle: every object re-spawned each iteration, the target labelled\n"
     "                with its ground truth (the paper's simplified setup); physical: the\n"
     "                push happens and the server's change detector labels it\n"
@@ -106,7 +108,9 @@ const char kRunUsage[] =
     "  --parallel    replications run at once, each its own session (default 2)\n"
     "  --snapshots   iterations whose relevance and choice maps are saved as PNGs\n"
     "                (default 1, 10, 100, ... and the last)\n"
-    "  --change-min-neighbours  physical mode: the change detector's radius filter keeps\n"
+    "  --change-method  physical mode: how the server labels a push (default visibility;\n"
+    "                paper2018: the authors' octree difference and ICP)\n"
+    "  --change-min-neighbours  paper2018: the change detector's radius filter keeps\n"
     "                points with this many neighbours in 1 cm (default 20 scaled by the\n"
     "                camera's point density against a 640x480 Kinect)\n"
     "  --resolution  the camera's size, its field of view kept (default: the scene's;\n"
@@ -171,6 +175,11 @@ StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* 
     if (!parsed.ok()) return parsed.status();
     options.resolution = *parsed;
   }
+  if (Status parsed = ParseWord("change-method", value("change-method"), kChangeMethods,
+                                &options.change_method);
+      !parsed.ok()) {
+    return parsed;
+  }
   if (Status parsed = ParseWord("sampling", value("sampling"), kSamplings, &options.sampling);
       !parsed.ok()) {
     return parsed;
@@ -192,5 +201,7 @@ const char* ModeName(LabellingMode mode) { return WordOf(kModes, mode); }
 const char* SamplingName(TargetSampling sampling) { return WordOf(kSamplings, sampling); }
 
 const char* VariantName(v1::ClassifierVariant variant) { return WordOf(kVariants, variant); }
+
+const char* ChangeMethodName(v1::ChangeMethod method) { return WordOf(kChangeMethods, method); }
 
 }  // namespace relmap::sim

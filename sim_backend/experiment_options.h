@@ -49,6 +49,8 @@ struct ExperimentOptions {
   // many neighbours within 1 cm (ALGORITHMS §5, 20 for a 640×480 Kinect). Unset: 20
   // scaled by the camera's point density, (width / 640)², at least 3.
   std::optional<int> change_min_neighbours;
+  // Physical mode: how the server labels a push.
+  v1::ChangeMethod change_method = v1::CHANGE_METHOD_VISIBILITY;
   std::optional<ImageSize> resolution;  // unset: the scene file's camera
   // Replications running at once, each its own session on its own thread.
   int parallel = 2;
@@ -69,5 +71,6 @@ StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* 
 const char* ModeName(LabellingMode mode);
 const char* SamplingName(TargetSampling sampling);
 const char* VariantName(v1::ClassifierVariant variant);
+const char* ChangeMethodName(v1::ChangeMethod method);
 
 }  // namespace relmap::sim

@@ -34,6 +34,15 @@ struct ModelCounts {
   std::uint32_t non_moveable_components = 0;
 };
 
+// Physical mode: what the server's change detector counted (ChangeEvidence, visibility).
+struct ChangeCounts {
+  std::uint64_t target_points = 0;
+  std::uint64_t supported_points = 0;
+  std::uint64_t vacated_points = 0;
+  std::uint64_t occluded_points = 0;
+  double elapsed_ms = 0;  // inside the server
+};
+
 struct IterationRecord {
   int iteration = 0;  // 1-based
   std::size_t supervoxels = 0;
@@ -53,6 +62,7 @@ struct IterationRecord {
   ModelCounts model;
   // Physical mode with a target: what the simulator says the push did.
   std::optional<PushReport> push;
+  std::optional<ChangeCounts> change;
   IterationTimings timings;
 };
 

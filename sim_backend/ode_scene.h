@@ -55,6 +55,9 @@ class OdeScene final : public SimulatedScene {
   const Scene& scene() const { return scene_; }
   // Intrinsics (pixels) and pose (world_from_camera) of the camera.
   const CameraModel& camera() const { return camera_; }
+  const KinectNoiseModel* depth_noise() const override {
+    return camera_.sensor == Sensor::kKinectV1 ? &camera_.noise : nullptr;
+  }
   // Renders at another size with the same field of view.
   void SetImageSize(std::uint32_t width, std::uint32_t height);
 

@@ -84,13 +84,22 @@ class Replication {
     config.mutable_classifier()->set_variant(options_.variant);
     if (options_.alpha) config.mutable_classifier()->set_alpha(*options_.alpha);
     if (options_.mode == LabellingMode::kPhysical) {
-      config.mutable_change_detector()->set_ror_min_neighbours(
+      v1::ChangeDetectorConfig& change = *config.mutable_change_detector();
+      change.set_method(options_.change_method);
+      change.set_ror_min_neighbours(
           options_.change_min_neighbours.value_or(ScaledMinNeighbours(scene_.Capture().width)));
+      // The server judges depths by the noise of the camera that took them.
+      if (const KinectNoiseModel* noise = scene_.depth_noise()) {
+        change.set_noise_sigma_base(noise->axial_constant);
+        change.set_noise_sigma_quadratic(noise->axial_quadratic);
+        change.set_noise_reference_depth(noise->axial_offset);
+        change.set_noise_quantisation(QuantisationCoefficient(*noise));
+      }
     }
     return FromGrpc(client_.CreateSession(config, &session_), "CreateSession");
   }
 
-  // ALGORITHMS §5's 20 neighbours within 1 cm assume a 640×480 Kinect; a camera of the
+  // paper2018 only: §5's 20 neighbours within 1 cm assume a 640×480 Kinect; a camera of the
   // same field of view and `width` columns sees (width / 640)² as many points per area.
   static int ScaledMinNeighbours(std::uint32_t width) {
     const double density = static_cast<double>(width) / 640.0;
@@ -211,6 +220,11 @@ class Replication {
     if (client::IsFrameGone(posted)) return OkStatus();
     if (Status status = FromGrpc(posted, "PostOutcome"); !status.ok()) return status;
     const bool label = response.label() == v1::LABEL_MOVEABLE;
+    if (response.has_evidence()) {
+      const v1::ChangeEvidence& e = response.evidence();
+      record->change = ChangeCounts{e.target_points(), e.supported_points(), e.vacated_points(),
+                                    e.occluded_points(), e.elapsed_ms()};
+    }
     record->label = label;
     record->truth = truth;
     if (label != truth) ++mislabelled_;

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "kinect_noise_model.h"
+
 namespace relmap::sim {
 
 // One pixel of the simulated RGB-D camera, in the camera frame (x right, y down,
@@ -60,6 +62,9 @@ class SimulatedScene {
   // approach from a random collision-free direction drawn from `seed`, 5 cm
   // straight to the target and a few cm further, retreat, and let the scene settle.
   virtual PushReport Push(const Eigen::Vector3f& target, std::uint64_t seed) = 0;
+  // The depth noise of the camera, for the change detector to judge depths by; nullptr for
+  // an ideal camera (the server's defaults then, a Kinect v1's).
+  virtual const KinectNoiseModel* depth_noise() const { return nullptr; }
 };
 
 }  // namespace relmap::sim
