@@ -50,18 +50,24 @@ std::optional<std::pair<double, double>> FitAxis(const std::vector<double>& rati
   return std::make_pair(fit[0], fit[1]);
 }
 
-// The before frame's normal at pixel (u, v), from its right and lower neighbours; nullopt at
-// the border, next to holes and across depth jumps (neighbours farther than `max_gap`).
+// The before frame's normal at pixel (u, v), from central differences 3 pixels apart (one
+// pixel apart, the depth steps of quantisation tilt it); nullopt at the border, next to
+// holes and across depth jumps (neighbours farther than `max_gap`).
 std::optional<Eigen::Vector3f> NormalAt(const Cloud& cloud, std::uint32_t u, std::uint32_t v,
                                         float max_gap) {
-  if (u + 1 >= cloud.width() || v + 1 >= cloud.height()) return std::nullopt;
+  constexpr std::uint32_t kSpan = 3;
+  if (u < kSpan || v < kSpan || u + kSpan >= cloud.width() || v + kSpan >= cloud.height()) {
+    return std::nullopt;
+  }
   const auto at = [&cloud](std::uint32_t x, std::uint32_t y) {
     const CloudPoint p = cloud.point(static_cast<std::size_t>(y) * cloud.width() + x);
     return Eigen::Vector3f(p.x, p.y, p.z);
   };
-  const Eigen::Vector3f p = at(u, v), right = at(u + 1, v) - p, down = at(u, v + 1) - p;
+  const Eigen::Vector3f p = at(u, v);
+  const Eigen::Vector3f right = at(u + kSpan, v) - at(u - kSpan, v);
+  const Eigen::Vector3f down = at(u, v + kSpan) - at(u, v - kSpan);
   if (!p.allFinite() || !right.allFinite() || !down.allFinite()) return std::nullopt;
-  if (right.norm() > max_gap || down.norm() > max_gap) return std::nullopt;
+  if (right.norm() > 2 * max_gap || down.norm() > 2 * max_gap) return std::nullopt;
   const Eigen::Vector3f n = right.cross(down);
   if (!(n.norm() > 0)) return std::nullopt;
   return n.normalized();
@@ -189,12 +195,12 @@ CameraMotion EstimateCameraMotion(const Cloud& before, const Cloud& after, std::
   return motion;
 }
 
-std::vector<Eigen::Vector3f> ReprojectInto(const Cloud& after, const Eigen::Isometry3f& motion,
-                                           const Intrinsics& k, std::uint32_t width,
-                                           std::uint32_t height) {
+std::vector<SeenPoint> ReprojectInto(const Cloud& after, const Eigen::Isometry3f& motion,
+                                     const Intrinsics& k, std::uint32_t width,
+                                     std::uint32_t height) {
   constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-  std::vector<Eigen::Vector3f> image(static_cast<std::size_t>(width) * height,
-                                     Eigen::Vector3f::Constant(kNan));
+  std::vector<SeenPoint> image(static_cast<std::size_t>(width) * height,
+                               SeenPoint{Eigen::Vector3f::Constant(kNan), {}});
   for (const pcl::PointXYZRGBA& p : after.pcl()) {
     if (!pcl::isFinite(p)) continue;
     const Eigen::Vector3f q = motion * Eigen::Vector3f(p.x, p.y, p.z);
@@ -202,9 +208,9 @@ std::vector<Eigen::Vector3f> ReprojectInto(const Cloud& after, const Eigen::Isom
     const double u = std::round(k.fx * q.x() / q.z() + k.cx);
     const double v = std::round(k.fy * q.y() / q.z() + k.cy);
     if (!(u >= 0 && v >= 0 && u < width && v < height)) continue;
-    Eigen::Vector3f& pixel =
-        image[static_cast<std::size_t>(v) * width + static_cast<std::size_t>(u)];
-    if (!(pixel.z() <= q.z())) pixel = q;  // NaN or farther: the nearer point hides it
+    SeenPoint& pixel = image[static_cast<std::size_t>(v) * width + static_cast<std::size_t>(u)];
+    // NaN or farther: the nearer point hides it.
+    if (!(pixel.position.z() <= q.z())) pixel = {q, {p.r, p.g, p.b}};
   }
   return image;
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -38,10 +39,16 @@ struct CameraMotion {
 CameraMotion EstimateCameraMotion(const Cloud& before, const Cloud& after, std::size_t samples,
                                   float max_distance);
 
+// A point of a re-projected frame, with its colour.
+struct SeenPoint {
+  Eigen::Vector3f position;
+  std::array<std::uint8_t, 3> rgb{};
+};
+
 // The after frame's points moved by `motion` and projected into a width x height image with
-// `intrinsics`, nearest point per pixel; NaN where none falls.
-std::vector<Eigen::Vector3f> ReprojectInto(const Cloud& after, const Eigen::Isometry3f& motion,
-                                           const Intrinsics& intrinsics, std::uint32_t width,
-                                           std::uint32_t height);
+// `intrinsics`, nearest point per pixel; NaN positions where none falls.
+std::vector<SeenPoint> ReprojectInto(const Cloud& after, const Eigen::Isometry3f& motion,
+                                     const Intrinsics& intrinsics, std::uint32_t width,
+                                     std::uint32_t height);
 
 }  // namespace relmap::perception

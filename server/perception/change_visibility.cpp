@@ -36,28 +36,77 @@ double Tolerance(const ChangeDetectorConfig& config, double z) {
 
 enum class Seen { kSupported, kVacated, kOccluded, kUnknown };
 
-// The after frame in the before frame's pixels (width x height, NaN holes): the points in a
-// window around the pixel, then the point on the pixel's own ray.
-Seen SeenAlongRay(const std::vector<Eigen::Vector3f>& after, std::uint32_t width,
-                  std::uint32_t height, std::size_t index, const Eigen::Vector3f& p,
-                  double tolerance, int window) {
+// The per-channel gain that maps the after frame's colours onto the before frame's: auto
+// exposure and white balance change between frames (the simulated Kinect draws 3 % and 2 %
+// per frame). From the pixels whose depth agrees, every 8th.
+Eigen::Array3d ColourGain(const Cloud& before, const std::vector<SeenPoint>& after,
+                          double tolerance_at_one_metre) {
+  Eigen::Array3d sum_before = Eigen::Array3d::Zero(), sum_after = Eigen::Array3d::Zero();
+  for (std::size_t i = 0; i < after.size(); i += 8) {
+    const CloudPoint p = before.point(i);
+    const Eigen::Vector3f& q = after[i].position;
+    if (!Finite(p) || !q.allFinite()) continue;
+    if (std::fabs(q.z() - p.z) > tolerance_at_one_metre * p.z * p.z) continue;
+    sum_before += Eigen::Array3d(p.r, p.g, p.b);
+    sum_after += Eigen::Array3d(after[i].rgb[0], after[i].rgb[1], after[i].rgb[2]);
+  }
+  Eigen::Array3d gain = Eigen::Array3d::Ones();
+  for (int c = 0; c < 3; ++c) {
+    if (sum_after[c] > 0 && sum_before[c] > 0) gain[c] = sum_before[c] / sum_after[c];
+  }
+  return gain;
+}
+
+// What the after frame (in the before frame's pixels) shows of the before-point `p`
+// (position, colour) at `index`: still there if a point within `tolerance` in a window
+// around the pixel looks the same (every channel within `colour_tolerance` once the gain is
+// applied; 0 turns colour off); seen through if the surface there now looks different (it
+// slid in its own plane: a wood grain, a print) or if the point on the pixel's own ray is
+// farther; hidden if that point is nearer.
+Seen SeenAlongRay(const std::vector<SeenPoint>& after, std::uint32_t width, std::uint32_t height,
+                  std::size_t index, const CloudPoint& before_point, double tolerance, int window,
+                  const Eigen::Array3d& gain, double colour_tolerance) {
+  const Eigen::Vector3f p = Position(before_point);
+  const Eigen::Array3d colour(before_point.r, before_point.g, before_point.b);
   const auto w = static_cast<std::int64_t>(width);
   const auto h = static_cast<std::int64_t>(height);
   const auto u = static_cast<std::int64_t>(index) % w;
   const auto v = static_cast<std::int64_t>(index) / w;
   const auto squared = static_cast<float>(tolerance * tolerance);
+  bool surface_there = false;
   for (std::int64_t y = std::max<std::int64_t>(0, v - window); y <= std::min(h - 1, v + window);
        ++y) {
     for (std::int64_t x = std::max<std::int64_t>(0, u - window); x <= std::min(w - 1, u + window);
          ++x) {
-      const Eigen::Vector3f& q = after[static_cast<std::size_t>(y * w + x)];
-      if (q.allFinite() && (q - p).squaredNorm() <= squared) return Seen::kSupported;
+      const SeenPoint& q = after[static_cast<std::size_t>(y * w + x)];
+      if (!q.position.allFinite() || (q.position - p).squaredNorm() > squared) continue;
+      surface_there = true;
+      const Eigen::Array3d seen(q.rgb[0], q.rgb[1], q.rgb[2]);
+      if (colour_tolerance <= 0 || ((seen * gain - colour).abs() <= colour_tolerance).all()) {
+        return Seen::kSupported;
+      }
     }
   }
-  const Eigen::Vector3f& q = after[index];
+  if (surface_there) return Seen::kVacated;
+  const Eigen::Vector3f& q = after[index].position;
   if (!q.allFinite()) return Seen::kUnknown;  // a hole (shadow, edge, range) tells nothing
   if (q.z() > p.z()) return Seen::kVacated;   // the ray now goes past where the point was
   return Seen::kOccluded;
+}
+
+// The share of the before frame's points (every 16th) that `after` still shows within the
+// tolerance, by geometry alone.
+double SupportedShare(const Cloud& before, const std::vector<SeenPoint>& after,
+                      const ChangeDetectorConfig& config) {
+  std::size_t points = 0, supported = 0;
+  for (std::size_t i = 0; i < before.size(); i += 16) {
+    const CloudPoint p = before.point(i);
+    if (!Finite(p)) continue;
+    ++points;
+    supported += SeenAlongRay(after, before.width(), before.height(), i, p, Tolerance(config, p.z),
+                              config.search_window, Eigen::Array3d::Ones(), 0) == Seen::kSupported;
+  }
+  return points == 0 ? 0.0 : static_cast<double>(supported) / static_cast<double>(points);
 }
 
 // Clouds without a shared pixel grid: a point is still there when an after-point lies
@@ -101,54 +150,47 @@ class NearbyAfterPoints {
   std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> cells_;
 };
 
-// Whether the two frames already share their pixel grid: the same size, and nine in ten of
-// the pixels (every 16th, finite in both) agree in depth within the tolerance. A push moves
-// a few percent of the image; a camera that moved by a degree disagrees on a quarter of it
-// (kinect_static_seq_1 and _3). Registration (tens of ms) is only paid when this fails.
-bool SamePixelGrid(const Cloud& before, const Cloud& after, const ChangeDetectorConfig& config) {
-  if (!before.organized() || before.width() != after.width() || before.height() != after.height()) {
-    return false;
-  }
-  std::size_t pairs = 0, agreeing = 0;
-  for (std::size_t i = 0; i < before.size(); i += 16) {
-    const CloudPoint p = before.point(i);
-    const CloudPoint q = after.point(i);
-    if (!Finite(p) || !Finite(q)) continue;
-    ++pairs;
-    agreeing += std::fabs(q.z - p.z) <= Tolerance(config, p.z);
-  }
-  return pairs >= 100 && 10 * agreeing >= 9 * pairs;
-}
-
 }  // namespace
 
 void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxel& target,
                         const ChangeDetectorConfig& config, ChangeEvidence& e) {
-  std::vector<std::pair<std::size_t, Eigen::Vector3f>> points;
+  std::vector<std::pair<std::size_t, CloudPoint>> points;
   points.reserve(target.point_indices.size());
   for (const std::int32_t i : target.point_indices) {
     const CloudPoint p = before.point(static_cast<std::size_t>(i));
-    if (Finite(p)) points.emplace_back(static_cast<std::size_t>(i), Position(p));
+    if (Finite(p)) points.emplace_back(static_cast<std::size_t>(i), p);
   }
   e.target_points = points.size();
   if (points.empty()) return;
 
-  Eigen::Isometry3f motion = Eigen::Isometry3f::Identity();
+  const std::optional<Intrinsics> intrinsics = IntrinsicsOf(before);
+  std::optional<CameraMotion> estimate;
   if (config.compensate_camera_motion) {
-    const CameraMotion estimate = EstimateCameraMotion(
-        before, after, static_cast<std::size_t>(config.motion_samples), config.motion_max_distance);
-    if (estimate.converged) {
-      motion = estimate.before_from_after;
-      e.camera_rotation_deg = estimate.rotation_deg;
-      e.camera_translation_m = estimate.translation_m;
-    }
+    estimate = EstimateCameraMotion(before, after, static_cast<std::size_t>(config.motion_samples),
+                                    config.motion_max_distance);
+    if (!estimate->converged) estimate.reset();
   }
-  if (const std::optional<Intrinsics> intrinsics = IntrinsicsOf(before)) {
-    const std::vector<Eigen::Vector3f> seen =
+  Eigen::Isometry3f motion = Eigen::Isometry3f::Identity();
+  if (intrinsics) {
+    std::vector<SeenPoint> seen =
         ReprojectInto(after, motion, *intrinsics, before.width(), before.height());
+    // The camera moved only if the frames agree better with the motion than without it: on
+    // a still camera, the registration fits the sensor's noise and quantisation (0.1-0.3
+    // degrees on the simulated Kinect), which would move every surface by a few mm.
+    if (estimate) {
+      std::vector<SeenPoint> moved = ReprojectInto(after, estimate->before_from_after, *intrinsics,
+                                                   before.width(), before.height());
+      if (SupportedShare(before, moved, config) > SupportedShare(before, seen, config)) {
+        seen = std::move(moved);
+        motion = estimate->before_from_after;
+        e.camera_rotation_deg = estimate->rotation_deg;
+        e.camera_translation_m = estimate->translation_m;
+      }
+    }
+    const Eigen::Array3d gain = ColourGain(before, seen, Tolerance(config, 1.0));
     for (const auto& [index, p] : points) {
-      switch (SeenAlongRay(seen, before.width(), before.height(), index, p,
-                           Tolerance(config, p.z()), config.search_window)) {
+      switch (SeenAlongRay(seen, before.width(), before.height(), index, p, Tolerance(config, p.z),
+                           config.search_window, gain, config.colour_tolerance)) {
         case Seen::kSupported:
           ++e.supported_points;
           break;
@@ -163,16 +205,21 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
       }
     }
   } else {
-    Eigen::Vector3f lo = points.front().second, hi = lo;
+    Eigen::Vector3f lo = Position(points.front().second), hi = lo;
     float cell = 0;
     for (const auto& [index, p] : points) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-      cell = std::max(cell, static_cast<float>(Tolerance(config, p.z())));
+      lo = lo.cwiseMin(Position(p));
+      hi = hi.cwiseMax(Position(p));
+      cell = std::max(cell, static_cast<float>(Tolerance(config, p.z)));
+    }
+    if (estimate) {
+      motion = estimate->before_from_after;
+      e.camera_rotation_deg = estimate->rotation_deg;
+      e.camera_translation_m = estimate->translation_m;
     }
     const NearbyAfterPoints nearby(after, motion, lo.array() - cell, hi.array() + cell, cell);
     for (const auto& [index, p] : points) {
-      if (nearby.AnyWithin(p, static_cast<float>(Tolerance(config, p.z())))) {
+      if (nearby.AnyWithin(Position(p), static_cast<float>(Tolerance(config, p.z)))) {
         ++e.supported_points;
       } else {
         ++e.vacated_points;

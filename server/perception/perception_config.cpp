@@ -82,6 +82,9 @@ Status Validate(const PerceptionConfig& config) {
     return Field("change.tolerance_sigmas", "in (0, 10]");
   }
   if (c.search_window < 0 || c.search_window > 8) return Field("change.search_window", "in [0, 8]");
+  if (!NonNegative(c.colour_tolerance) || c.colour_tolerance > 255) {
+    return Field("change.colour_tolerance", "in [0, 255]");
+  }
   if (!Positive(c.min_vacated_fraction) || c.min_vacated_fraction > 1.0) {
     return Field("change.min_vacated_fraction", "in (0, 1]");
   }

@@ -154,6 +154,7 @@ StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& co
   if (cd.has_search_window()) change.search_window = cd.search_window();
   if (cd.has_min_vacated_fraction()) change.min_vacated_fraction = cd.min_vacated_fraction();
   if (cd.has_min_vacated_points()) change.min_vacated_points = cd.min_vacated_points();
+  if (cd.has_colour_tolerance()) change.colour_tolerance = cd.colour_tolerance();
   if (cd.has_compensate_camera_motion()) {
     change.compensate_camera_motion = cd.compensate_camera_motion();
   }
@@ -208,6 +209,7 @@ v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings) {
   cd->set_min_vacated_fraction(change.min_vacated_fraction);
   cd->set_min_vacated_points(change.min_vacated_points);
   cd->set_compensate_camera_motion(change.compensate_camera_motion);
+  cd->set_colour_tolerance(change.colour_tolerance);
   FeaturesToProto(settings.perception.features, config.mutable_features());
   config.set_seed(settings.classifier.seed);
   config.set_feature_dimension(static_cast<std::uint32_t>(settings.feature_dimension));
