@@ -1,0 +1,104 @@
+// The visibility test of docs/method.md §5.1 on a wall facing the camera: each target point
+// is still there, seen through, hidden or unseen, by the noise model's tolerance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "perception/change_detector.h"
+
+namespace relmap::perception {
+namespace {
+
+constexpr std::uint32_t kWidth = 160, kHeight = 120;
+constexpr float kFocal = 140.0f;
+
+// A wall at depth 1 m seen by a pinhole camera; the pixels of the 20x20 patch at the centre
+// are at `patch_depth` (NaN: holes).
+Cloud Wall(float patch_depth) {
+  std::vector<CloudPoint> points(static_cast<std::size_t>(kWidth) * kHeight);
+  for (std::uint32_t v = 0; v < kHeight; ++v) {
+    for (std::uint32_t u = 0; u < kWidth; ++u) {
+      const bool patch = u >= 70 && u < 90 && v >= 50 && v < 70;
+      const float z = patch ? patch_depth : 1.0f;
+      CloudPoint& p = points[static_cast<std::size_t>(v) * kWidth + u];
+      p.x = (static_cast<float>(u) - (kWidth - 1) / 2.0f) * z / kFocal;
+      p.y = (static_cast<float>(v) - (kHeight - 1) / 2.0f) * z / kFocal;
+      p.z = z;
+    }
+  }
+  return *MakeCloud(kWidth, kHeight, points);
+}
+
+Supervoxel Patch() {
+  Supervoxel target;
+  for (std::uint32_t v = 50; v < 70; ++v) {
+    for (std::uint32_t u = 70; u < 90; ++u) {
+      target.point_indices.push_back(static_cast<std::int32_t>(v * kWidth + u));
+    }
+  }
+  target.voxels.push_back({Eigen::Vector3f(0, 0, 1), Eigen::Vector3f(0, 0, -1), {0, 0, 0}});
+  return target;
+}
+
+// The tolerance at 1 m: 3 sqrt(2) sigma(1) + step(1), Kinect v1 figures.
+double ToleranceAtOneMetre() {
+  const double sigma = 0.0012 + 0.0019 * 0.6 * 0.6;
+  return 3.0 * std::sqrt(2.0) * sigma + 1.0 / (8.0 * 580.0 * 0.075);
+}
+
+// The patch's outer ring of pixels lies one pixel (7 mm) from the unchanged wall around it,
+// within the tolerance of the search window: still there, whatever happened to the patch.
+constexpr std::size_t kRing = 20 * 20 - 18 * 18;
+constexpr std::size_t kInside = 18 * 18;
+
+ChangeEvidence Detect(float patch_depth_after, bool compensate = true) {
+  ChangeDetectorConfig config;
+  config.compensate_camera_motion = compensate;
+  StatusOr<ChangeEvidence> e = DetectChange(Wall(1.0f), Wall(patch_depth_after), Patch(), config);
+  EXPECT_TRUE(e.ok()) << e.status().message();
+  return e.ok() ? *e : ChangeEvidence{};
+}
+
+TEST(VisibilityChange, AnUnchangedWallIsStillThere) {
+  const ChangeEvidence e = Detect(1.0f);
+  EXPECT_EQ(e.target_points, 400u);
+  EXPECT_EQ(e.supported_points, 400u);
+  EXPECT_FALSE(e.moved);
+  EXPECT_NEAR(e.camera_rotation_deg, 0.0, 1e-3);
+}
+
+TEST(VisibilityChange, APatchThatWentBackIsSeenThrough) {
+  const ChangeEvidence e = Detect(1.05f);
+  EXPECT_EQ(e.vacated_points, kInside);
+  EXPECT_EQ(e.supported_points, kRing);
+  EXPECT_TRUE(e.moved);
+}
+
+TEST(VisibilityChange, SomethingInFrontHidesTheTargetAndIsNoMotion) {
+  const ChangeEvidence e = Detect(0.95f);
+  EXPECT_EQ(e.occluded_points, kInside);
+  EXPECT_EQ(e.supported_points, kRing);
+  EXPECT_FALSE(e.moved);
+}
+
+TEST(VisibilityChange, HolesSayNothing) {
+  const ChangeEvidence e = Detect(std::numeric_limits<float>::quiet_NaN());
+  EXPECT_EQ(e.supported_points, kRing);
+  EXPECT_EQ(e.vacated_points + e.occluded_points, 0u);
+  EXPECT_FALSE(e.moved);
+}
+
+TEST(VisibilityChange, TheToleranceIsTheNoiseModels) {
+  const double tolerance = ToleranceAtOneMetre();  // 10.9 mm
+  // The patch's points move along their rays: by depth * |ray| > depth; 0.9 and 1.1 of the
+  // tolerance in depth keep clear of that on either side (|ray| <= 1.0002 here).
+  EXPECT_EQ(Detect(static_cast<float>(1.0 + 0.9 * tolerance), false).supported_points, 400u);
+  const ChangeEvidence beyond = Detect(static_cast<float>(1.0 + 1.1 * tolerance), false);
+  EXPECT_EQ(beyond.vacated_points, kInside);
+  EXPECT_TRUE(beyond.moved);
+}
+
+}  // namespace
+}  // namespace relmap::perception
