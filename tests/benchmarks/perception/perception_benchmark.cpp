@@ -78,11 +78,14 @@ void WholeFrame(benchmark::State& state, const Input* in, bool naive) {
   for (auto _ : state) benchmark::DoNotOptimize(rp::BuildFrame(in->cloud, config));
 }
 
-void ChangeDetection(benchmark::State& state, const Input* before, const Input* after) {
+void ChangeDetection(benchmark::State& state, const Input* before, const Input* after,
+                     rp::ChangeMethod method) {
   const auto seg = rp::ExtractSupervoxels(before->cloud, rp::SupervoxelConfig{});
   const rp::Supervoxel& target = seg->supervoxels.front();
+  rp::ChangeDetectorConfig config;
+  config.method = method;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(rp::DetectChange(before->cloud, after->cloud, target, {}));
+    benchmark::DoNotOptimize(rp::DetectChange(before->cloud, after->cloud, target, config));
   }
 }
 
@@ -107,8 +110,14 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i + 1 < inputs.size(); ++i) {
     if (inputs[i].name.rfind("kinect_static_seq", 0) == 0 &&
         inputs[i + 1].name.rfind("kinect_static_seq", 0) == 0) {
-      benchmark::RegisterBenchmark(("ChangeDetection/" + inputs[i].name + "_to_next").c_str(),
-                                   ChangeDetection, &inputs[i], &inputs[i + 1]);
+      for (const rp::ChangeMethod method :
+           {rp::ChangeMethod::kVisibility, rp::ChangeMethod::kPaper2018}) {
+        benchmark::RegisterBenchmark(
+            ("ChangeDetection/" + std::string(rp::ChangeMethodName(method)) + "/" + inputs[i].name +
+             "_to_next")
+                .c_str(),
+            ChangeDetection, &inputs[i], &inputs[i + 1], method);
+      }
     }
   }
   benchmark::Initialize(&argc, argv);
