@@ -21,11 +21,23 @@ def rows_of(run):
                     yield row
 
 
+def vacated_share(rows):
+    """The median share of vacated points among the shown ones, over `rows`."""
+    shares = []
+    for r in rows:
+        if not r.get("change_target_points"):
+            continue
+        shown = sum(int(r[f"change_{k}_points"]) for k in ("supported", "vacated", "occluded"))
+        if shown:
+            shares.append(int(r["change_vacated_points"]) / shown)
+    return f"{statistics.median(shares):.2f}" if shares else "-"
+
+
 def main():
     root = sys.argv[1]
     print("| scene | resolution | pushes | moved | missed moves | false moved | wrong labels "
-          "| detector ms (median, max) |")
-    print("|---|---|---|---|---|---|---|---|")
+          "| vacated share, labelled moved / not (median) | detector ms (median, max) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     failed = False
     for run in sorted(d for d in glob.glob(os.path.join(root, "*")) if os.path.isdir(d)):
         scene, resolution = os.path.basename(run).rsplit("-", 1)
@@ -39,10 +51,12 @@ def main():
         times = [float(r["change_ms"]) for r in rows if r.get("change_ms")]
         timing = f"{statistics.median(times):.1f}, {max(times):.1f}" if times else "-"
         rate = wrong / len(rows)
+        evidence = " / ".join(vacated_share([r for r in rows if r["label"] == label])
+                              for label in ("1", "0"))
         bad = rate > 0.05 or false_moved > 0
         failed |= bad
         print(f"| {scene} | {resolution} | {len(rows)} | {len(moved)} | {missed} | {false_moved} "
-              f"| {wrong} ({100 * rate:.1f} %){' FAIL' if bad else ''} | {timing} |")
+              f"| {wrong} ({100 * rate:.1f} %){' FAIL' if bad else ''} | {evidence} | {timing} |")
     return 1 if failed else 0
 
 
