@@ -4,7 +4,7 @@
 usage: results-sim-table.py OUT_DIR [EXPERIMENT ...]
 
 One row per experiment (default: every OUT_DIR/*/summary.json, in the order of
-scripts/results-sim.sh): iterations, replications, the thresholded-soft
+OUT_DIR/experiments.txt that scripts/results-sim.sh writes, else of November's list): iterations, replications, the thresholded-soft
 precision / recall / accuracy of the last iteration as mean (min–max), the soft
 accuracy mean, the median final components per class (moveable / non-moveable),
 failed runs (final thresholded accuracy < 0.6), mislabelled pushes (physical
@@ -53,7 +53,9 @@ def row(name, summary):
 
 def main():
     out = sys.argv[1]
-    names = sys.argv[2:] or [n for n in ORDER if os.path.exists(os.path.join(out, n, "summary.json"))]
+    listed = os.path.join(out, "experiments.txt")
+    order = open(listed).read().split() if os.path.exists(listed) else ORDER
+    names = sys.argv[2:] or [n for n in order if os.path.exists(os.path.join(out, n, "summary.json"))]
     print("| experiment | classifier | labels | iterations | reps | precision | recall | accuracy | "
           "soft acc. | comp. pos / neg | failed | mislabelled | ms / it. |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
