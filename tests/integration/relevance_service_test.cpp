@@ -129,13 +129,11 @@ TEST_F(RelevanceServer, OutcomesAreLearnedOncePerRequestId) {
 
 TEST_F(RelevanceServer, TheChangeDetectorLabelsFromTheAfterCloud) {
   const auto [id, token] = Create();
-  // 640×480: the detector's outlier filters (§5: at least 20 neighbours within
-  // 1 cm) are tuned to a Kinect's density at that resolution.
   const v1::Cloud before = PackedTabletop(640, 480);
   v1::ComputeMapsResponse maps;
   ASSERT_TRUE(ComputeMaps(id, token, before, &maps).ok());
-  // The supervoxel nearest to the camera (the depth-noise allowance of the
-  // detector grows with z²), and an after cloud in which its points are gone.
+  // The supervoxel nearest to the camera, and an after cloud in which its points are gone:
+  // the camera sees 30 cm further along their rays (what was behind the object).
   std::uint32_t target = 0;
   float nearest = std::numeric_limits<float>::infinity();
   for (const v1::Supervoxel& sv : maps.supervoxels()) {
@@ -155,11 +153,14 @@ TEST_F(RelevanceServer, TheChangeDetectorLabelsFromTheAfterCloud) {
   }
   v1::Cloud after = before;
   std::string points = after.packed().points();
-  const float nan = std::numeric_limits<float>::quiet_NaN();
   for (int i = 0; i < maps.point_labels_size(); ++i) {
     const std::int32_t label = maps.point_labels(i);
     if (label >= 0 && removed_supervoxel[static_cast<std::size_t>(label)]) {
-      std::memcpy(&points[static_cast<std::size_t>(i) * 16], &nan, 4);
+      float xyz[3];
+      std::memcpy(xyz, &points[static_cast<std::size_t>(i) * 16], sizeof xyz);
+      const float farther = (xyz[2] + 0.3f) / xyz[2];
+      for (float& v : xyz) v *= farther;
+      std::memcpy(&points[static_cast<std::size_t>(i) * 16], xyz, sizeof xyz);
     }
   }
   after.mutable_packed()->set_points(points);
@@ -185,7 +186,7 @@ TEST_F(RelevanceServer, TheChangeDetectorLabelsFromTheAfterCloud) {
   ASSERT_TRUE(post(after, "removed", &removed).ok());
   EXPECT_EQ(removed.label(), v1::LABEL_MOVEABLE);
   EXPECT_TRUE(removed.evidence().moved()) << removed.evidence().ShortDebugString();
-  EXPECT_GT(removed.evidence().difference_points(), 0u);
+  EXPECT_GT(removed.evidence().vacated_points(), 0u);
   EXPECT_EQ(removed.stats().moveable_samples(), 1u);
 }
 
