@@ -184,7 +184,11 @@ CameraMotion TreeIcp(const Cloud& before, const Cloud& after, std::size_t sample
 
 CameraMotion EstimateCameraMotion(const Cloud& before, const Cloud& after, std::size_t samples,
                                   float max_distance) {
-  const std::optional<Intrinsics> k = IntrinsicsOf(before);
+  return EstimateCameraMotion(before, IntrinsicsOf(before), after, samples, max_distance);
+}
+
+CameraMotion EstimateCameraMotion(const Cloud& before, const std::optional<Intrinsics>& k,
+                                  const Cloud& after, std::size_t samples, float max_distance) {
   CameraMotion motion = k ? ProjectiveIcp(before, *k, after, samples, max_distance)
                           : TreeIcp(before, after, samples, max_distance);
   if (motion.converged) {

@@ -38,6 +38,9 @@ struct CameraMotion {
 // throws.
 CameraMotion EstimateCameraMotion(const Cloud& before, const Cloud& after, std::size_t samples,
                                   float max_distance);
+// The same with the before frame's intrinsics already read (IntrinsicsOf(before)).
+CameraMotion EstimateCameraMotion(const Cloud& before, const std::optional<Intrinsics>& intrinsics,
+                                  const Cloud& after, std::size_t samples, float max_distance);
 
 // A point of a re-projected frame, with its colour.
 struct SeenPoint {

@@ -40,13 +40,13 @@ enum class Seen { kSupported, kVacated, kOccluded, kUnknown };
 // exposure and white balance change between frames (the simulated Kinect draws 3 % and 2 %
 // per frame). From the pixels whose depth agrees, every 8th.
 Eigen::Array3d ColourGain(const Cloud& before, const std::vector<SeenPoint>& after,
-                          double tolerance_at_one_metre) {
+                          const ChangeDetectorConfig& config) {
   Eigen::Array3d sum_before = Eigen::Array3d::Zero(), sum_after = Eigen::Array3d::Zero();
   for (std::size_t i = 0; i < after.size(); i += 8) {
     const CloudPoint p = before.point(i);
     const Eigen::Vector3f& q = after[i].position;
     if (!Finite(p) || !q.allFinite()) continue;
-    if (std::fabs(q.z() - p.z) > tolerance_at_one_metre * p.z * p.z) continue;
+    if (std::fabs(q.z() - p.z) > Tolerance(config, p.z)) continue;
     sum_before += Eigen::Array3d(p.r, p.g, p.b);
     sum_after += Eigen::Array3d(after[i].rgb[0], after[i].rgb[1], after[i].rgb[2]);
   }
@@ -166,7 +166,8 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
   const std::optional<Intrinsics> intrinsics = IntrinsicsOf(before);
   std::optional<CameraMotion> estimate;
   if (config.compensate_camera_motion) {
-    estimate = EstimateCameraMotion(before, after, static_cast<std::size_t>(config.motion_samples),
+    estimate = EstimateCameraMotion(before, intrinsics, after,
+                                    static_cast<std::size_t>(config.motion_samples),
                                     config.motion_max_distance);
     if (!estimate->converged) estimate.reset();
   }
@@ -187,7 +188,9 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
         e.camera_translation_m = estimate->translation_m;
       }
     }
-    const Eigen::Array3d gain = ColourGain(before, seen, Tolerance(config, 1.0));
+    // Only the colour check needs the gain.
+    const Eigen::Array3d gain =
+        config.colour_tolerance > 0 ? ColourGain(before, seen, config) : Eigen::Array3d::Ones();
     for (const auto& [index, p] : points) {
       switch (SeenAlongRay(seen, before.width(), before.height(), index, p, Tolerance(config, p.z),
                            config.search_window, gain, config.colour_tolerance)) {
