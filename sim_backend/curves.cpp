@@ -21,7 +21,8 @@ const char kIterationCsvHeader[] =
     "push_executed,push_target_body,push_target_moved,push_moved_bodies,push_simulated_s,"
     "respawn_ms,capture_ms,maps_ms,server_maps_ms,evaluation_ms,snapshot_ms,push_ms,outcome_ms,"
     "iteration_ms,change_target_points,change_supported_points,change_vacated_points,"
-    "change_occluded_points,change_ms";
+    "change_occluded_points,change_ms,push_target_points,push_displaced_points,"
+    "push_target_displaced";
 
 namespace {
 
@@ -237,6 +238,12 @@ void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out) 
           << Milliseconds(i.change->elapsed_ms);
     } else {
       out << ",,,,,";
+    }
+    if (i.displacement) {
+      out << ',' << i.displacement->points << ',' << i.displacement->displaced << ','
+          << Bit(i.displacement->moved());
+    } else {
+      out << ",,,";
     }
     out << '\n';
   }

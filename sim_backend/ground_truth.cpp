@@ -1,13 +1,14 @@
-// One pass over the points: per supervoxel, points and points on moveable bodies.
+// One pass over the points: per supervoxel, points and points on moveable bodies; or,
+// for one supervoxel, points and points a push displaced.
 #include "ground_truth.h"
 
 #include <string>
 
 namespace relmap::sim {
+namespace {
 
-StatusOr<std::vector<bool>> SupervoxelGroundTruth(
-    const CameraFrame& frame, const v1::ComputeMapsResponse& maps,
-    const std::function<bool(std::int32_t body_id)>& is_moveable) {
+// The frame and the maps label the same points, one body id each.
+Status CheckLabelsMatch(const CameraFrame& frame, const v1::ComputeMapsResponse& maps) {
   const auto& labels = maps.point_labels();
   if (static_cast<std::size_t>(labels.size()) != frame.points.size()) {
     return InvalidArgumentError("the server labelled " + std::to_string(labels.size()) +
@@ -18,6 +19,16 @@ StatusOr<std::vector<bool>> SupervoxelGroundTruth(
     return InvalidArgumentError("the frame has " + std::to_string(frame.body_ids.size()) +
                                 " body ids for " + std::to_string(frame.points.size()) + " points");
   }
+  return OkStatus();
+}
+
+}  // namespace
+
+StatusOr<std::vector<bool>> SupervoxelGroundTruth(
+    const CameraFrame& frame, const v1::ComputeMapsResponse& maps,
+    const std::function<bool(std::int32_t body_id)>& is_moveable) {
+  if (Status status = CheckLabelsMatch(frame, maps); !status.ok()) return status;
+  const auto& labels = maps.point_labels();
   // Supervoxel ids are small (0, 1, ... per frame): index them through a vector.
   std::vector<int> index_of_id;
   for (int i = 0; i < maps.supervoxels_size(); ++i) {
@@ -46,6 +57,32 @@ StatusOr<std::vector<bool>> SupervoxelGroundTruth(
                                      kObjectFraction * static_cast<double>(points[i]);
   }
   return object;
+}
+
+StatusOr<SupervoxelDisplacement> DisplacementOf(const CameraFrame& frame,
+                                                const v1::ComputeMapsResponse& maps,
+                                                std::uint32_t supervoxel_id,
+                                                const PushReport& push) {
+  if (Status status = CheckLabelsMatch(frame, maps); !status.ok()) return status;
+  const auto& labels = maps.point_labels();
+  const auto threshold = static_cast<float>(push.motion_threshold);
+  SupervoxelDisplacement displacement;
+  for (std::size_t p = 0; p < frame.points.size(); ++p) {
+    if (labels[static_cast<int>(p)] != static_cast<std::int64_t>(supervoxel_id)) continue;
+    ++displacement.points;
+    const std::int32_t body = frame.body_ids[p];
+    if (body == kNoBody) continue;
+    if (static_cast<std::size_t>(body) >= push.body_motions.size()) {
+      return InvalidArgumentError("point " + std::to_string(p) + " hit body " +
+                                  std::to_string(body) + ", of which the push says nothing");
+    }
+    const CameraPoint& c = frame.points[p];
+    const Eigen::Vector3f point(c.x, c.y, c.z);
+    if ((push.body_motions[static_cast<std::size_t>(body)] * point - point).norm() > threshold) {
+      ++displacement.displaced;
+    }
+  }
+  return displacement;
 }
 
 }  // namespace relmap::sim

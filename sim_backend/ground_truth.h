@@ -1,5 +1,7 @@
 // Ground truth of a relevance map (ALGORITHMS §6): a supervoxel is part of a moveable
-// object when at least half of its points hit a moveable body. The points of a
+// object when at least half of its points hit a moveable body. Ground truth of a push:
+// the pushed supervoxel moved when at least half of its points were displaced by more
+// than the scene's motion threshold. The points of a
 // supervoxel come from the server's point labels (ComputeMapsResponse.point_labels),
 // their bodies from the simulator (CameraFrame.body_ids).
 #pragma once
@@ -24,5 +26,27 @@ inline constexpr double kObjectFraction = 0.5;
 StatusOr<std::vector<bool>> SupervoxelGroundTruth(
     const CameraFrame& frame, const v1::ComputeMapsResponse& maps,
     const std::function<bool(std::int32_t body_id)>& is_moveable);
+
+// What a push did to the points of one supervoxel: each point moved with the body its
+// ray hit (PushReport::body_motions).
+struct SupervoxelDisplacement {
+  std::size_t points = 0;     // the supervoxel's points in the frame before the push
+  std::size_t displaced = 0;  // of which moved by more than the motion threshold
+  double share() const {
+    return points ? static_cast<double>(displaced) / static_cast<double>(points) : 0.0;
+  }
+  // At least kObjectFraction of the points: the same majority that makes a supervoxel
+  // an object makes it moved, so that a mixed supervoxel is judged by what most of it
+  // is, and an object turned about its centre of mass (which barely moves) still moved.
+  bool moved() const { return points > 0 && share() >= kObjectFraction; }
+};
+
+// The displacement of supervoxel `supervoxel_id` of `maps` (computed on `frame`) by
+// `push`. INVALID_ARGUMENT as SupervoxelGroundTruth, or when the push names no motion
+// for a body the frame shows.
+StatusOr<SupervoxelDisplacement> DisplacementOf(const CameraFrame& frame,
+                                                const v1::ComputeMapsResponse& maps,
+                                                std::uint32_t supervoxel_id,
+                                                const PushReport& push);
 
 }  // namespace relmap::sim

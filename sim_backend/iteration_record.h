@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "exploration/metrics.h"
+#include "ground_truth.h"
 #include "simulated_scene.h"
 
 namespace relmap::sim {
@@ -62,6 +63,8 @@ struct IterationRecord {
   ModelCounts model;
   // Physical mode with a target: what the simulator says the push did.
   std::optional<PushReport> push;
+  // Physical mode, an executed push: how many of the target's points it displaced.
+  std::optional<SupervoxelDisplacement> displacement;
   std::optional<ChangeCounts> change;
   IterationTimings timings;
 };

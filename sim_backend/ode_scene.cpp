@@ -91,8 +91,14 @@ void OdeScene::Respawn(std::uint64_t seed) {
 PushReport OdeScene::Push(const Eigen::Vector3f& target, std::uint64_t seed) {
   OdeCall call(*world_);
   SeededRandom random(seed, kPushStream);
-  return ExecutePush(CameraToWorld(target.cast<double>()), motion_threshold_, *world_, bodies_,
-                     *caster_, random);
+  PushReport report = ExecutePush(CameraToWorld(target.cast<double>()), motion_threshold_, *world_,
+                                  bodies_, *caster_, random);
+  // World-frame motions to camera-frame ones: camera_from_world * motion * world_from_camera.
+  const Eigen::Isometry3f world_from_camera = camera_.world_from_camera.cast<float>();
+  for (Eigen::Isometry3f& motion : report.body_motions) {
+    motion = world_from_camera.inverse() * motion * world_from_camera;
+  }
+  return report;
 }
 
 void OdeScene::SetImageSize(std::uint32_t width, std::uint32_t height) {

@@ -126,8 +126,11 @@ PushReport ExecutePush(const Eigen::Vector3d& target, double motion_threshold, O
   report.executed = true;
 
   std::vector<Eigen::Vector3d> before(bodies.size());
+  std::vector<Eigen::Isometry3d> pose_before(bodies.size(), Eigen::Isometry3d::Identity());
   for (const SimBody& b : bodies) {
-    if (b.moveable) before[b.id] = CentreOfMass(b);
+    if (!b.moveable) continue;
+    before[b.id] = CentreOfMass(b);
+    pose_before[b.id] = ObjectPose(b);
   }
   const double dt = world.step_seconds();
   const Eigen::Vector3d velocity = physics.push_speed * direction;
@@ -139,8 +142,12 @@ PushReport ExecutePush(const Eigen::Vector3d& target, double motion_threshold, O
   world.ParkEffector();
   report.simulated_seconds = 2 * forward * dt + SettleScene(world, bodies);
 
+  report.motion_threshold = motion_threshold;
+  report.body_motions.assign(bodies.size(), Eigen::Isometry3f::Identity());
   for (const SimBody& b : bodies) {
-    if (b.moveable && (CentreOfMass(b) - before[b.id]).norm() > motion_threshold) {
+    if (!b.moveable) continue;
+    report.body_motions[b.id] = (ObjectPose(b) * pose_before[b.id].inverse()).cast<float>();
+    if ((CentreOfMass(b) - before[b.id]).norm() > motion_threshold) {
       report.moved_bodies.push_back(b.id);
     }
   }

@@ -20,7 +20,7 @@ namespace relmap::sim {
 // `overshoot`), stopping early if it runs into a static body; then it goes back
 // the same way, leaves, and the scene settles. The direction is the first
 // collision-free one of 16 evenly spaced horizontal directions, randomly rotated
-// and shuffled by `random`.
+// and shuffled by `random`. The report's body motions are in the world frame.
 PushReport ExecutePush(const Eigen::Vector3d& target, double motion_threshold, OdeWorld& world,
                        const std::vector<SimBody>& bodies, RayCamera& caster, SeededRandom& random);
 

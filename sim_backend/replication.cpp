@@ -151,7 +151,7 @@ class Replication {
     }
 
     if (target->has_value()) {
-      status = LabelAndLearn(iteration, maps, **target,
+      status = LabelAndLearn(iteration, frame, maps, **target,
                              (*object)[static_cast<std::size_t>(**target)], &record);
       if (!status.ok()) return status;
     }
@@ -183,11 +183,11 @@ class Replication {
     record->soft = exploration::SoftScores(relevance, object);
   }
 
-  // Pushes (physical) and posts the outcome of supervoxel `index` of `maps`, whose
-  // ground truth is `truth`. A push the simulator could not execute (every approach
+  // Pushes (physical) and posts the outcome of supervoxel `index` of `maps` (computed on
+  // `frame`), whose ground truth is `truth`. A push the simulator could not execute (every approach
   // blocked) says nothing about the target: no outcome is posted for it.
-  Status LabelAndLearn(int iteration, const v1::ComputeMapsResponse& maps, int index, bool truth,
-                       IterationRecord* record) {
+  Status LabelAndLearn(int iteration, const CameraFrame& frame, const v1::ComputeMapsResponse& maps,
+                       int index, bool truth, IterationRecord* record) {
     const v1::Supervoxel& target = maps.supervoxels(index);
     record->target = target.id();
     const std::string request_id = RequestId(replication_, iteration);
@@ -208,6 +208,10 @@ class Replication {
         record->timings.push_ms = MillisecondsSince(stage);
         return OkStatus();
       }
+      StatusOr<SupervoxelDisplacement> displacement =
+          DisplacementOf(frame, maps, target.id(), *record->push);
+      if (!displacement.ok()) return displacement.status();
+      record->displacement = *displacement;
       after_push_ = scene_.Capture();
       const v1::Cloud after = PackCloud(*after_push_);
       record->timings.push_ms = MillisecondsSince(stage);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -39,10 +40,16 @@ struct PushReport {
   bool executed = false;
   // The body whose surface was nearest the target point (kNoBody if none).
   std::int32_t target_body = kNoBody;
-  // Bodies displaced by more than the scene's motion threshold.
+  // Bodies whose centre of mass moved by more than the scene's motion threshold.
   std::vector<std::int32_t> moved_bodies;
   // Simulated seconds, pushing and settling.
   double simulated_seconds = 0;
+  // Per body id, its rigid motion over the push in the camera frame: a point p of body b
+  // before the push is at body_motions[b] * p after it (identity for static bodies).
+  // Empty when the push was not executed.
+  std::vector<Eigen::Isometry3f> body_motions;
+  // The scene's motion threshold (m), by which a point counts as displaced.
+  double motion_threshold = 0;
 };
 
 class SimulatedScene {
