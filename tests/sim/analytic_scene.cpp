@@ -184,6 +184,8 @@ PushReport AnalyticScene::Push(const Eigen::Vector3f& target, std::uint64_t seed
   PushReport report;
   report.executed = true;
   report.simulated_seconds = 1.0;
+  report.motion_threshold = 0.01;  // ODE scenes' default
+  report.body_motions.assign(bodies_.size(), Eigen::Isometry3f::Identity());
   std::size_t nearest = kTable;
   float distance = Distance(bodies_[kTable], target);
   for (std::size_t id = 1; id < bodies_.size(); ++id) {
@@ -202,6 +204,7 @@ PushReport AnalyticScene::Push(const Eigen::Vector3f& target, std::uint64_t seed
                                                          static_cast<float>(std::sin(a)), 0);
     if (FitsAt(nearest)) {
       report.moved_bodies.push_back(report.target_body);
+      report.body_motions[nearest] = Eigen::Translation3f(body.centre - from);
       return report;
     }
   }
