@@ -24,18 +24,25 @@ std::vector<CloudPoint> Cloud::points() const {
   return out;
 }
 
-StatusOr<Cloud> MakeCloud(std::uint32_t width, std::uint32_t height, std::vector<CloudPoint> points,
-                          const DecodeLimits& limits) {
-  const long long count = static_cast<long long>(width) * height;
+StatusOr<std::uint64_t> DeclaredPoints(std::uint32_t width, std::uint32_t height,
+                                       const DecodeLimits& limits) {
   if (width == 0 || height == 0) {
     return InvalidArgumentError("cloud has width " + std::to_string(width) + " and height " +
                                 std::to_string(height) + ": both must be > 0");
   }
-  if (count > limits.max_points) {  // a limit of the server, not a malformed cloud
+  const std::uint64_t count = static_cast<std::uint64_t>(width) * height;
+  if (count > static_cast<std::uint64_t>(limits.max_points)) {
     return ResourceExhaustedError("cloud has " + std::to_string(count) + " points, more than the " +
                                   std::to_string(limits.max_points) + " allowed");
   }
-  if (static_cast<long long>(points.size()) != count) {
+  return count;
+}
+
+StatusOr<Cloud> MakeCloud(std::uint32_t width, std::uint32_t height, std::vector<CloudPoint> points,
+                          const DecodeLimits& limits) {
+  const StatusOr<std::uint64_t> count = DeclaredPoints(width, height, limits);
+  if (!count.ok()) return count.status();
+  if (points.size() != *count) {
     return InvalidArgumentError("cloud declares " + std::to_string(width) + "x" +
                                 std::to_string(height) + " points but holds " +
                                 std::to_string(points.size()));

@@ -55,6 +55,12 @@ class Cloud {
   std::size_t valid_points_ = 0;
 };
 
+// width x height, the points a cloud declares: INVALID_ARGUMENT for an empty size,
+// RESOURCE_EXHAUSTED beyond limits.max_points (a limit of the server, not a malformed
+// cloud). Computed in 64 unsigned bits, where two 32-bit sizes cannot wrap.
+StatusOr<std::uint64_t> DeclaredPoints(std::uint32_t width, std::uint32_t height,
+                                       const DecodeLimits& limits);
+
 // Builds a cloud from plain points (row-major for organized clouds). Points with any
 // non-finite coordinate become holes (NaN); the check for absurd coordinates and the
 // point limit of `limits` apply; a cloud with no finite point is an error.

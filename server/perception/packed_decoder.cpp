@@ -9,24 +9,16 @@ namespace relmap::perception {
 
 StatusOr<Cloud> DecodePacked(std::string_view bytes, std::uint32_t width, std::uint32_t height,
                              const DecodeLimits& limits) {
-  const long long count = static_cast<long long>(width) * height;
-  if (width == 0 || height == 0) {
-    return InvalidArgumentError("packed cloud: width and height must be > 0 (got " +
-                                std::to_string(width) + "x" + std::to_string(height) + ")");
-  }
-  if (count > limits.max_points) {  // a limit of the server, not a malformed cloud
-    return ResourceExhaustedError("packed cloud: " + std::to_string(count) +
-                                  " points declared, more than the " +
-                                  std::to_string(limits.max_points) + " allowed");
-  }
-  const long long expected = count * static_cast<long long>(kPackedPointBytes);
-  if (static_cast<long long>(bytes.size()) != expected) {
+  const StatusOr<std::uint64_t> count = DeclaredPoints(width, height, limits);
+  if (!count.ok()) return count.status();
+  const std::uint64_t expected = *count * kPackedPointBytes;  // count <= max_points
+  if (bytes.size() != expected) {
     return InvalidArgumentError(
         "packed cloud: " + std::to_string(width) + "x" + std::to_string(height) + " points need " +
         std::to_string(expected) + " bytes (16 per point), got " + std::to_string(bytes.size()));
   }
   // x86-64 and ARM64 are little endian, like the layout: plain copies suffice.
-  std::vector<CloudPoint> points(static_cast<std::size_t>(count));
+  std::vector<CloudPoint> points(static_cast<std::size_t>(*count));
   const char* p = bytes.data();
   for (CloudPoint& point : points) {
     std::memcpy(&point.x, p, 4);

@@ -549,7 +549,7 @@ TEST_F(Outcomes, AnAfterCloudThatDoesNotDecodeIsInvalidAndLearnsNothing) {
   v1::PostOutcomeResponse response;
   const grpc::Status status = server_.stub().PostOutcome(&context, request, &response);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-  EXPECT_THAT(status.error_message(), HasSubstr("width and height must be > 0"));
+  EXPECT_THAT(status.error_message(), HasSubstr("height 0: both must be > 0"));
   const v1::SessionStats stats = Stats(session);
   EXPECT_EQ(stats.moveable_samples() + stats.non_moveable_samples(), 0u);
 }

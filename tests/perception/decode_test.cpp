@@ -321,6 +321,10 @@ TEST(DecodePacked, RejectsWrongSizesAndLimits) {
   EXPECT_THAT(DecodePacked(bytes, 5, 1).status().message(), HasSubstr("need 80 bytes"));
   EXPECT_THAT(DecodePacked(bytes, 0, 4).status().message(), HasSubstr("must be > 0"));
   EXPECT_THAT(DecodePacked(bytes, 100000, 100000).status().message(), HasSubstr("allowed"));
+  // (2^32 - 1)^2 points overflow a signed 64-bit product: the fuzzer's crasher.
+  const StatusOr<Cloud> huge = DecodePacked(bytes, 4294967295u, 4294967295u);
+  EXPECT_EQ(huge.status().code(), StatusCode::kResourceExhausted);
+  EXPECT_THAT(huge.status().message(), HasSubstr("18446744065119617025 points"));
   DecodeLimits small;
   small.max_points = 3;
   EXPECT_THAT(DecodePacked(bytes, 4, 1, small).status().message(), HasSubstr("allowed"));
