@@ -35,9 +35,14 @@ Status Validate(const PerceptionConfig& config) {
   if (!Positive(l.max_abs_coordinate)) return Field("limits.max_abs_coordinate", "> 0");
 
   const SupervoxelConfig& s = config.supervoxels;
-  if (!Positive(s.voxel_resolution)) return Field("supervoxels.voxel_resolution", "> 0");
-  if (!Positive(s.seed_resolution) || s.seed_resolution < s.voxel_resolution) {
-    return Field("supervoxels.seed_resolution", ">= voxel_resolution");
+  // PCL's octrees assert (and abort the process) when a cloud's extent over the resolution
+  // needs more key bits than they have (1e-9 m did); finer than 1 mm is below any depth
+  // camera's noise, coarser than 1 m leaves nothing of a table-top object.
+  if (!(s.voxel_resolution >= kMinVoxelResolution && s.voxel_resolution <= kMaxVoxelResolution)) {
+    return Field("supervoxels.voxel_resolution", "in [0.001, 1] m");
+  }
+  if (!(s.seed_resolution >= s.voxel_resolution && s.seed_resolution <= kMaxSeedResolution)) {
+    return Field("supervoxels.seed_resolution", "in [voxel_resolution, 10] m");
   }
   if (!NonNegative(s.colour_importance)) return Field("supervoxels.colour_importance", ">= 0");
   if (!NonNegative(s.spatial_importance)) return Field("supervoxels.spatial_importance", ">= 0");

@@ -65,6 +65,11 @@ enum class FpfhScheme {
   kRawPoints,
 };
 
+// The accepted supervoxel resolutions, in metres (Validate).
+inline constexpr float kMinVoxelResolution = 0.001f;
+inline constexpr float kMaxVoxelResolution = 1.0f;
+inline constexpr float kMaxSeedResolution = 10.0f;
+
 // The accepted FPFH radii, in metres (Validate).
 inline constexpr float kMinFpfhRadius = 0.005f;
 inline constexpr float kMaxFpfhRadius = 0.5f;

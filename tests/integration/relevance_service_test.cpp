@@ -1,6 +1,7 @@
 // The relevance server end to end: a real server process on a loopback port,
 // talked to through the generated API.
 #include <arpa/inet.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <stdlib.h>
@@ -252,6 +253,40 @@ TEST_F(RelevanceServer, BadCloudsAreInvalidArguments) {
   EXPECT_EQ(ComputeMaps(id, token, holes, &maps).error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_EQ(ComputeMaps(id, token, v1::Cloud{}, &maps).error_code(),
             grpc::StatusCode::INVALID_ARGUMENT);
+}
+
+// The crashers the fuzzing of issue 14 found, each now a precise status from a server that
+// goes on serving: a packed cloud of (2^32 - 1)^2 points (its size wrapped), and resolutions
+// that PCL's octrees abort on or grow without bound with.
+TEST_F(RelevanceServer, FuzzedCrashersGetStatusesAndTheServerLives) {
+  const auto [id, token] = Create();
+  v1::ComputeMapsResponse maps;
+  v1::Cloud wrapping;
+  wrapping.mutable_packed()->set_width(4294967295u);
+  wrapping.mutable_packed()->set_height(4294967295u);
+  wrapping.mutable_packed()->set_points(std::string(64, '\0'));
+  EXPECT_EQ(ComputeMaps(id, token, wrapping, &maps).error_code(),
+            grpc::StatusCode::RESOURCE_EXHAUSTED);
+
+  for (const float resolution : {1e-9f, 1e-30f}) {
+    grpc::ClientContext context;
+    v1::CreateSessionRequest request;
+    request.mutable_config()->mutable_supervoxels()->set_voxel_resolution(resolution);
+    v1::CreateSessionResponse response;
+    const grpc::Status status = stub_->CreateSession(&context, request, &response);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << resolution;
+    EXPECT_THAT(status.error_message(), ::testing::HasSubstr("supervoxels.voxel_resolution"));
+  }
+  {
+    grpc::ClientContext context;
+    v1::CreateSessionRequest request;
+    request.mutable_config()->mutable_change_detector()->set_octree_resolution(1e-9f);
+    v1::CreateSessionResponse response;
+    const grpc::Status status = stub_->CreateSession(&context, request, &response);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_THAT(status.error_message(), ::testing::HasSubstr("change.octree_resolution"));
+  }
+  EXPECT_TRUE(ComputeMaps(id, token, PackedTabletop(), &maps).ok());  // still serving
 }
 
 // The features a session learned from a pushed supervoxel, as ExportSession returns them.
