@@ -229,17 +229,20 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
       }
     }
   }
-  // Occluded points count as evidence against "moved": something else may have come in
-  // front of a target that stayed (a neighbour the pusher knocked), and a false "moved"
-  // teaches the classifier the worse error. A target the after frame mostly does not show
-  // (holes, the image border after the camera moved) is not judged: half of it at least must
-  // be seen. And a few points seen through are not enough: a camera that moved reveals a
-  // strip behind every edge (8 of 53 points of a supervoxel of kinect_static_seq_1 -> 2).
+  // A target the after frame mostly does not show (holes, the image border after the camera
+  // moved) is not judged: half of it at least must be seen, occluded points included. The
+  // share of vacated points is of those whose pixel still says something about the target's
+  // own surface (still there or seen through): an occluded point only says that something is
+  // in front now, the target itself pushed towards the camera as often as a neighbour knocked
+  // in front of a target that stayed, so it counts neither way. And a few points seen through
+  // are not enough: a camera that moved reveals a strip behind every edge (8 of 53 points of
+  // a supervoxel of kinect_static_seq_1 -> 2).
   const std::size_t shown = e.supported_points + e.vacated_points + e.occluded_points;
+  const std::size_t surface = e.supported_points + e.vacated_points;
   e.moved = 2 * shown >= e.target_points &&
             e.vacated_points >= static_cast<std::size_t>(config.min_vacated_points) &&
             static_cast<double>(e.vacated_points) >=
-                config.min_vacated_fraction * static_cast<double>(shown);
+                config.min_vacated_fraction * static_cast<double>(surface);
 }
 
 }  // namespace relmap::perception

@@ -137,9 +137,10 @@ struct ChangeDetectorConfig {
   // kinect_static_seq_* 25 of 45 points of one supervoxel change by more than 64 levels:
   // off until it holds on real data.
   double colour_tolerance = 0;
-  // Moved iff at least this share of the target's points that the after frame shows
-  // (still there, vacated or occluded) was seen through, at least min_vacated_points of
-  // them, and the after frame shows at least half of the target. On the simulated setups with an
+  // Moved iff at least this share of the target's points that the after frame shows still
+  // there or vacated was seen through (occluded points, behind something nearer, say neither),
+  // at least min_vacated_points of them, and the after frame shows at least half of the target
+  // (occluded points included). On the simulated setups with an
   // ideal camera, pushes that moved their target left 0.44-1.0 of it vacated and pushes that did
   // not 0-0.03 (docs/results.md §C).
   double min_vacated_fraction = 0.2;

@@ -14,14 +14,13 @@ namespace {
 constexpr std::uint32_t kWidth = 160, kHeight = 120;
 constexpr float kFocal = 140.0f;
 
-// A wall at depth 1 m seen by a pinhole camera; the pixels of the 20x20 patch at the centre
-// are at `patch_depth` (NaN: holes).
-Cloud Wall(float patch_depth) {
+// A wall seen by a pinhole camera, the depth of pixel (u, v) given by `depth` (NaN: a hole).
+template <typename Depth>
+Cloud WallOf(Depth depth) {
   std::vector<CloudPoint> points(static_cast<std::size_t>(kWidth) * kHeight);
   for (std::uint32_t v = 0; v < kHeight; ++v) {
     for (std::uint32_t u = 0; u < kWidth; ++u) {
-      const bool patch = u >= 70 && u < 90 && v >= 50 && v < 70;
-      const float z = patch ? patch_depth : 1.0f;
+      const float z = depth(u, v);
       CloudPoint& p = points[static_cast<std::size_t>(v) * kWidth + u];
       p.x = (static_cast<float>(u) - (kWidth - 1) / 2.0f) * z / kFocal;
       p.y = (static_cast<float>(v) - (kHeight - 1) / 2.0f) * z / kFocal;
@@ -29,6 +28,14 @@ Cloud Wall(float patch_depth) {
     }
   }
   return *MakeCloud(kWidth, kHeight, points);
+}
+
+bool InPatch(std::uint32_t u, std::uint32_t v) { return u >= 70 && u < 90 && v >= 50 && v < 70; }
+
+// A wall at depth 1 m; the pixels of the 20x20 patch at the centre are at `patch_depth`.
+Cloud Wall(float patch_depth) {
+  return WallOf(
+      [&](std::uint32_t u, std::uint32_t v) { return InPatch(u, v) ? patch_depth : 1.0f; });
 }
 
 Supervoxel Patch() {
@@ -81,6 +88,26 @@ TEST(VisibilityChange, SomethingInFrontHidesTheTargetAndIsNoMotion) {
   EXPECT_EQ(e.occluded_points, kInside);
   EXPECT_EQ(e.supported_points, kRing);
   EXPECT_FALSE(e.moved);
+}
+
+TEST(VisibilityChange, OccludedPointsCountNeitherWay) {
+  // After: columns 70-84 of the patch 5 cm nearer (something in front), 85-89 5 cm farther.
+  // The ring (76 points, one pixel from the unchanged wall) is still there; inside, columns
+  // 71-84 are occluded (14 x 18 = 252) and 85-88 vacated (4 x 18 = 72). Vacated are 18 % of
+  // the 400 shown points, but 72 / (76 + 72) = 49 % of those that show the target's own
+  // surface: moved.
+  const Cloud after = WallOf([](std::uint32_t u, std::uint32_t v) {
+    if (!InPatch(u, v)) return 1.0f;
+    return u < 85 ? 0.95f : 1.05f;
+  });
+  ChangeDetectorConfig config;
+  config.compensate_camera_motion = false;
+  const StatusOr<ChangeEvidence> e = DetectChange(Wall(1.0f), after, Patch(), config);
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  EXPECT_EQ(e->supported_points, kRing);
+  EXPECT_EQ(e->occluded_points, 14u * 18u);
+  EXPECT_EQ(e->vacated_points, 4u * 18u);
+  EXPECT_TRUE(e->moved);
 }
 
 TEST(VisibilityChange, HolesSayNothing) {
