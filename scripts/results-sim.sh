@@ -4,9 +4,9 @@
 # ablations side by side (one component per class, paper2018, random sampling) and
 # physical labelling. Needs the build (scripts/configure-build.sh), or RELMAP_SIM naming a
 # relmap-sim with its relmap-server beside it. Results go to
-# out/results-kinect/<experiment>/ (summary.json, replication-<r>.csv, plots), in
-# order in experiments.txt; an experiment whose summary.json exists is skipped, so a
-# run can be resumed.
+# out/results-kinect/<experiment>/ (summary.json, replication-<r>.csv, plots); the
+# summaries and accuracy plots are kept in docs/results/kinect/ (below), in order in its
+# experiments.txt; an experiment kept there is skipped, so a run can be resumed.
 # Then scripts/results-sim-table.py prints the tables of docs/results.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,17 +14,26 @@ sim=${RELMAP_SIM:-build/sim_backend/relmap-sim}  # or a copy, to rebuild while i
 out=${OUT:-out/results-kinect}
 reps=${REPLICATIONS:-10}
 
+keep=${KEEP:-docs/results/kinect}  # what docs/results.md cites, committed
+
+# Each finished experiment's summary.json and accuracy plot are kept under $keep/<name>/,
+# in git: a run that the 180-minute sessions cut short resumes from a clean clone where it
+# stopped, and the tables are made from what is kept.
 run() {  # run <experiment> <relmap-sim run flags...>
   local name=$1
   shift
-  mkdir -p "$out"
-  if [ -f "$out/$name/summary.json" ]; then
-    echo "== $name: done already"
+  mkdir -p "$out" "$keep"
+  grep -qx "$name" "$keep/experiments.txt" 2>/dev/null || echo "$name" >>"$keep/experiments.txt"
+  if [ -f "$keep/$name/summary.json" ]; then
+    echo "== $name: done already ($keep/$name)"
     return
   fi
-  grep -qx "$name" "$out/experiments.txt" 2>/dev/null || echo "$name" >>"$out/experiments.txt"
-  echo "== $name: $sim run $* --replications $reps --seed 1 --parallel 2 --out $out/$name"
-  "$sim" run "$@" --replications "$reps" --seed 1 --parallel 2 --out "$out/$name"
+  if [ ! -f "$out/$name/summary.json" ]; then
+    echo "== $name: $sim run $* --replications $reps --seed 1 --parallel 2 --out $out/$name"
+    "$sim" run "$@" --replications "$reps" --seed 1 --parallel 2 --out "$out/$name"
+  fi
+  mkdir -p "$keep/$name"
+  cp "$out/$name/summary.json" "$out/$name/accuracy.png" "$keep/$name/"
 }
 
 # With the default camera, the simulated Kinect v1 (sim_backend/scenes/README.md,
@@ -60,4 +69,4 @@ done
 for scene in "${paper[@]}" "${benchmarks[@]}"; do
   run "$scene-physical" --scene "$(file_of "$scene")" --mode physical --iterations 100
 done
-/usr/bin/env python3 scripts/results-sim-table.py "$out"
+/usr/bin/env python3 scripts/results-sim-table.py "$keep"
