@@ -1,5 +1,5 @@
 // How right a relevance map is, where the truth is known: the paper's soft accuracy
-// (ALGORITHMS §6, exploration/metrics.h), the one score of relmap-robot's progress
+// (docs/method.md §6, exploration/metrics.h), the one score of relmap-robot's progress
 // lines and learning curves.
 #pragma once
 

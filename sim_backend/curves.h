@@ -13,7 +13,7 @@
 namespace relmap::sim {
 
 // A replication whose final thresholded-soft accuracy is below this failed (the
-// paper's "runs that end near accuracy 0.5", ALGORITHMS §7.1).
+// paper's "runs that end near accuracy 0.5", docs/method.md §7.1).
 inline constexpr double kFailedRunAccuracy = 0.6;
 
 // The header of replication-<r>.csv: its columns, in order.

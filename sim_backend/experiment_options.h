@@ -14,7 +14,7 @@
 
 namespace relmap::sim {
 
-// How the outcome of a push is labelled (issue 5, ALGORITHMS §7).
+// How the outcome of a push is labelled (issue 5, docs/method.md §7).
 enum class LabellingMode {
   // The paper's simplified setup: every object re-spawned each iteration, the chosen
   // supervoxel labelled with its ground truth; nothing is pushed.
@@ -46,7 +46,7 @@ struct ExperimentOptions {
   std::optional<double> alpha;  // unset: the server's default (0.25)
   TargetSampling sampling = TargetSampling::kChoice;
   // Physical mode: the change detector's radius filter keeps points with at least this
-  // many neighbours within 1 cm (ALGORITHMS §5, 20 for a 640×480 Kinect). Unset: 20
+  // many neighbours within 1 cm (docs/method.md §5, 20 for a 640×480 Kinect). Unset: 20
   // scaled by the camera's point density, (width / 640)², at least 3.
   std::optional<int> change_min_neighbours;
   // Physical mode: how the server labels a push.

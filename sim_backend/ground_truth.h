@@ -1,4 +1,4 @@
-// Ground truth of a relevance map (ALGORITHMS §6): a supervoxel is part of a moveable
+// Ground truth of a relevance map (docs/method.md §6): a supervoxel is part of a moveable
 // object when at least half of its points hit a moveable body. Ground truth of a push:
 // the pushed supervoxel moved when at least half of its points were displaced by more
 // than the scene's motion threshold. The points of a

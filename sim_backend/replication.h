@@ -1,6 +1,6 @@
 // One replication of an experiment: its own session and its own scene, iterated.
 //
-// Order inside an iteration (relmap's, ALGORITHMS §7): capture → ComputeMaps (maps of
+// Order inside an iteration (relmap's, docs/method.md §7): capture → ComputeMaps (maps of
 // every sample learned so far) → score the relevance map (§6) → choose the target →
 // label it (oracle: its ground truth; physical: push, capture again, and the server's
 // change detector decides from the two clouds) → PostOutcome, after which the session

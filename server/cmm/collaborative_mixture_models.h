@@ -1,4 +1,4 @@
-// Collaborative Mixture Models (Le Goff et al., 2018, §3 of ALGORITHMS.md): one
+// Collaborative Mixture Models (Le Goff et al., 2018, §3 of docs/method.md): one
 // Gaussian mixture per class, grown online by Algorithm IAGMM, predicting
 // P(moveable | x) with eq. (class_est).
 #pragma once

@@ -1,6 +1,6 @@
 // Configuration of the Collaborative Mixture Models: the paper's constants as
 // defaults, and every behaviour of the authors' 2018 code as a named switch
-// (ALGORITHMS.md §3.9), so that a run can turn the fixes on one at a time.
+// (docs/method.md §3.9), so that a run can turn the fixes on one at a time.
 #pragma once
 
 #include <cstdint>

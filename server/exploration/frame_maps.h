@@ -21,7 +21,7 @@ struct FrameMaps {
 };
 
 // Maps of the N×p feature matrix of a frame (one row per supervoxel). Rows with a
-// non-finite value get relevance 0.5 and choice 0 (ALGORITHMS §2) and are
+// non-finite value get relevance 0.5 and choice 0 (docs/method.md §2) and are
 // counted. `interactions` is the number of targets drawn before in the session
 // (the paper2018 quirks draw the first 11 uniformly); `random` is the session's RNG,
 // or null to compute the maps without drawing a target (target stays -1).

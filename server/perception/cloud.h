@@ -1,5 +1,5 @@
 // A decoded, validated point cloud (x y z + RGBA, organized or not). The points live in a
-// PCL cloud (decoded once, ARCHITECTURE "one representation per stage"), but this header
+// PCL cloud (decoded once, docs/architecture.md "one representation per stage"), but this header
 // does not include PCL, so that later layers do not pay PCL's compile cost.
 #pragma once
 

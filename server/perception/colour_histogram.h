@@ -1,4 +1,4 @@
-// The 15 colour values of a supervoxel's feature (ALGORITHMS.md §2): 5-bin histograms of
+// The 15 colour values of a supervoxel's feature (docs/method.md §2): 5-bin histograms of
 // CIELab L, a, b over its voxels' mean colours, in either colour conversion.
 #pragma once
 

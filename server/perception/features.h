@@ -1,4 +1,4 @@
-// The 48-d feature of every supervoxel of a segmentation (ALGORITHMS.md §2): one N x 48
+// The 48-d feature of every supervoxel of a segmentation (docs/method.md §2): one N x 48
 // matrix, rows aligned with the supervoxel ids.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The 33 FPFH values of each supervoxel's feature (ALGORITHMS.md §2), in three schemes: the
+// The 33 FPFH values of each supervoxel's feature (docs/method.md §2), in three schemes: the
 // exact per-union computation, the shared per-voxel one and the per-raw-point one
 // (perception_config.h).
 #pragma once

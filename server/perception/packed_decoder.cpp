@@ -1,4 +1,4 @@
-// The packed binary layout of the API: 16 bytes per point (ALGORITHMS-independent, see decode.h).
+// The packed binary layout of the API: 16 bytes per point (see decode.h; not in docs/method.md).
 #include <cstring>
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-// Configuration of the perception layer: decoding limits, VCCS supervoxels (ALGORITHMS.md §1),
+// Configuration of the perception layer: decoding limits, VCCS supervoxels (docs/method.md §1),
 // features (§2) and change detection (§5), with the authors' values as defaults.
 #pragma once
 

@@ -1,4 +1,4 @@
-// VCCS supervoxels (ALGORITHMS.md §1): crop, optional pre-voxelisation, PCL
+// VCCS supervoxels (docs/method.md §1): crop, optional pre-voxelisation, PCL
 // SupervoxelClustering, then a plain-data copy with the small supervoxels dropped.
 #include "perception/supervoxels.h"
 

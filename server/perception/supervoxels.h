@@ -1,4 +1,4 @@
-// VCCS supervoxels of a cloud (ALGORITHMS.md §1) as plain data: what the features, the maps
+// VCCS supervoxels of a cloud (docs/method.md §1) as plain data: what the features, the maps
 // and the change detector need, without PCL types.
 #pragma once
 

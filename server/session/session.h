@@ -99,7 +99,7 @@ class Session {
   StatusOr<Outcome> PostOutcome(std::uint64_t frame_id, std::uint32_t supervoxel_id, int label,
                                 const std::string& request_id, std::int64_t now_unix_ms);
 
-  // The same, with the label decided by the change detector (ALGORITHMS §5) from
+  // The same, with the label decided by the change detector (docs/method.md §5) from
   // the frame's cloud and `after`, the cloud after the push.
   StatusOr<Outcome> PostOutcomeFromCloud(std::uint64_t frame_id, std::uint32_t supervoxel_id,
                                          perception::Cloud after, const std::string& request_id,

@@ -10,7 +10,7 @@
 
 namespace relmap::session {
 
-// The feature dimension of sessions fed with clouds (ALGORITHMS §2).
+// The feature dimension of sessions fed with clouds (docs/method.md §2).
 inline constexpr int kCloudFeatureDimension = 48;
 
 struct SessionSettings {

@@ -40,7 +40,7 @@ TEST(Drain, ReportsNotServingForTheServerAndItsServiceAndKeepsAnsweringUntilTheD
   v1::GetSessionResponse got;
   EXPECT_TRUE(client->GetSession(session, &got).ok()) << "a draining server still answers";
 
-  client.reset();  // an open connection would hold the stop back (README, "Load")
+  client.reset();  // an open connection would hold the stop back
   const int status = (*server)->Stop();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - terminated).count();

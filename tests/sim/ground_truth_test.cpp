@@ -1,5 +1,5 @@
 // A supervoxel is an object when at least half of its points hit a moveable body
-// (ALGORITHMS §6), its points named by the server's point labels; a push moved it when
+// (docs/method.md §6), its points named by the server's point labels; a push moved it when
 // at least half of its points moved with their bodies by more than the motion threshold.
 #include "ground_truth.h"
 

@@ -38,7 +38,7 @@ struct ProblemOptions {
   // Probability that a sample is of class 1 (0.2 gives an imbalance of 1:4).
   double positive_fraction = 0.5;
   // The last `constant_dimensions` of the p dimensions are exactly 0, like the
-  // colour bins the 2018 colour conversion never fills (ALGORITHMS §2); the
+  // colour bins the 2018 colour conversion never fills (docs/method.md §2); the
   // problem and its ambient noise live in the other p − constant_dimensions.
   int constant_dimensions = 0;
 };

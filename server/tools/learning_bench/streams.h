@@ -37,7 +37,7 @@ std::span<const StreamSpec> BuiltInStreams();
 const StreamSpec* FindBuiltInStream(std::string_view name);
 
 struct StreamSizes {
-  int train = 400;  // a real robot run (ALGORITHMS §7)
+  int train = 400;  // a real robot run (docs/method.md §7)
   int test = 2000;
 };
 

@@ -1,4 +1,4 @@
-// One test per switch of Paper2018Switches: each changes behaviour as ALGORITHMS.md
+// One test per switch of Paper2018Switches: each changes behaviour as docs/method.md
 // §3.9 documents, against the corrected model on the same input.
 #include <gtest/gtest.h>
 

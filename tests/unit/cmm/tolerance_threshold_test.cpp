@@ -1,4 +1,4 @@
-// The tolerance threshold T(n, p, α) of §3.5 against the table of ALGORITHMS.md.
+// The tolerance threshold T(n, p, α) of §3.5 against the table of docs/method.md.
 #include "cmm/tolerance_threshold.h"
 
 #include <gtest/gtest.h>

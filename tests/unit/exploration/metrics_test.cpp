@@ -23,7 +23,7 @@ TEST(Metrics, SoftScoresFollowThePaperEquations) {
 
 TEST(Metrics, ThresholdedSoftScoresOfAnUntrainedModel) {
   // All P1 = 0.5 >= θ: tp = 0.5·objects, fp = 0.5·background, fn = tn = 0 →
-  // recall 1 and accuracy ½(0.5 + 0) = 0.25, as ALGORITHMS §6 says.
+  // recall 1 and accuracy ½(0.5 + 0) = 0.25, as docs/method.md §6 says.
   const Eigen::Vector4d p = Eigen::Vector4d::Constant(0.5);
   const std::vector<bool> moveable{true, false, false, false};
   const Scores s = ThresholdedSoftScores(p, moveable);
