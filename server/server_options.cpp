@@ -40,7 +40,7 @@ constexpr std::string_view kUsage =
     "                its last call (default 10); a dead server's sessions are free at once\n"
     "  --drain-seconds  on SIGTERM, report NOT_SERVING on grpc.health.v1 and keep serving\n"
     "                this long before stopping (default 0; behind a load balancer: 5)\n"
-    "  --admin-key-file  a file holding the admin key that create, list and delete need\n"
+    "  --admin-key-file  a file holding the admin key that create, list, delete and import need\n"
     "                (as 'x-relmap-admin-key' metadata); default $RELMAP_ADMIN_KEY, or none\n"
     "  --tls-cert, --tls-key  serve TLS with this PEM certificate chain and private key\n"
     "  --max-threads  bound of the worker threads; calls beyond it get RESOURCE_EXHAUSTED\n"

@@ -146,9 +146,9 @@ Status RelevanceService::AdminAuthorised(const grpc::ServerContext& context) con
   const auto& metadata = context.client_metadata();
   const auto header = metadata.find("x-relmap-admin-key");
   if (header == metadata.end()) {
-    return Status(
-        StatusCode::kUnauthenticated,
-        "this server needs 'x-relmap-admin-key' metadata to create, list or delete sessions");
+    return Status(StatusCode::kUnauthenticated,
+                  "this server needs 'x-relmap-admin-key' metadata to create, list, delete or "
+                  "import sessions");
   }
   if (!session::TokenMatches(std::string_view(header->second.data(), header->second.size()),
                              admin_key_hash_)) {
