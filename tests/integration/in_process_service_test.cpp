@@ -599,7 +599,7 @@ TEST_F(Clouds, HoleOnlyEmptyOrMalformedCloudsAreInvalidArguments) {
       {"+inf only", TabletopWithEveryPointAt(inf, inf, inf), "no valid (finite) point"},
       {"-inf depth only", TabletopWithEveryPointAt(0, 0, -inf), "no valid (finite) point"},
       {"nan and inf only", mixed_holes, "no valid (finite) point"},
-      {"0x0", Packed(0, 0, {}), "width and height must be > 0"},
+      {"0x0", Packed(0, 0, {}), "height 0: both must be > 0"},
       {"bytes of 10 points for 120x90", short_of_bytes, "need 172800 bytes (16 per point)"},
       {"a point 1 km away", Packed(2, 1, {0, 0, 1, 0, 0, 1000}), "beyond the 100.000000 m"},
       {"three points", Packed(3, 1, {0, 0, 1, 0.01f, 0, 1, 0, 0.01f, 1}), "gave no supervoxel"},
