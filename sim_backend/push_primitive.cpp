@@ -6,6 +6,7 @@
 #include <numeric>
 #include <optional>
 
+#include "ode_math.h"
 #include "point_distance.h"
 #include "scene_dynamics.h"
 
@@ -72,11 +73,6 @@ std::optional<double> SupportHeight(const Eigen::Vector3d& target, OdeWorld& wor
   return std::nullopt;
 }
 
-Eigen::Vector3d CentreOfMass(const SimBody& body) {
-  const dReal* p = dBodyGetPosition(body.body);  // ODE bodies sit at their centre of mass
-  return {p[0], p[1], p[2]};
-}
-
 }  // namespace
 
 std::int32_t NearestBody(const Eigen::Vector3d& point, const std::vector<SimBody>& bodies) {
@@ -125,12 +121,10 @@ PushReport ExecutePush(const Eigen::Vector3d& target, double motion_threshold, O
   }
   report.executed = true;
 
-  std::vector<Eigen::Vector3d> before(bodies.size());
-  std::vector<Eigen::Isometry3d> pose_before(bodies.size(), Eigen::Isometry3d::Identity());
+  // ODE bodies sit at their centre of mass: the pose's translation is the centre's position.
+  std::vector<Eigen::Isometry3d> before(bodies.size(), Eigen::Isometry3d::Identity());
   for (const SimBody& b : bodies) {
-    if (!b.moveable) continue;
-    before[b.id] = CentreOfMass(b);
-    pose_before[b.id] = ObjectPose(b);
+    if (b.moveable) before[b.id] = PoseOf(b.body);
   }
   const double dt = world.step_seconds();
   const Eigen::Vector3d velocity = physics.push_speed * direction;
@@ -146,8 +140,9 @@ PushReport ExecutePush(const Eigen::Vector3d& target, double motion_threshold, O
   report.body_motions.assign(bodies.size(), Eigen::Isometry3f::Identity());
   for (const SimBody& b : bodies) {
     if (!b.moveable) continue;
-    report.body_motions[b.id] = (ObjectPose(b) * pose_before[b.id].inverse()).cast<float>();
-    if ((CentreOfMass(b) - before[b.id]).norm() > motion_threshold) {
+    const Eigen::Isometry3d after = PoseOf(b.body);
+    report.body_motions[b.id] = (after * before[b.id].inverse()).cast<float>();
+    if ((after.translation() - before[b.id].translation()).norm() > motion_threshold) {
       report.moved_bodies.push_back(b.id);
     }
   }
