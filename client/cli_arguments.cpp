@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "tools/command_line.h"
+#include "common/command_line.h"
 
 namespace relmap::client {
 namespace {

@@ -7,7 +7,7 @@
 #include <iterator>
 
 #include "cli_commands.h"
-#include "tools/command_line.h"
+#include "common/command_line.h"
 
 namespace relmap::client {
 

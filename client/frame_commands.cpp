@@ -1,17 +1,17 @@
 // relmap maps and relmap outcome: one push cycle from the command line.
 #include "cli_commands.h"
-#include "map_rendering_cloud.h"
-#include "perception/decode.h"
-#include "tools/command_line.h"
+#include "common/command_line.h"
+#include "common/pcd/pcd_reader.h"
+#include "map_rendering_pcd.h"
 
 namespace relmap::client {
 namespace {
 
-// The renderings asked for, drawn over the cloud as this client decodes it, with the
-// same decoder as the server so that the point labels line up.
+// The renderings asked for, drawn over the cloud as this client reads it, with the
+// same PCD reader as the server's decoder so that the point labels line up.
 void WriteRenderings(const CommandLine& args, const std::string& pcd_bytes,
                      const v1::ComputeMapsResponse& maps) {
-  const StatusOr<perception::Cloud> cloud = perception::DecodePcd(pcd_bytes);
+  const StatusOr<pcd::Points> cloud = pcd::ReadPcd(pcd_bytes);
   if (!cloud.ok()) tools::ExitWithError("relmap", cloud.status().message());
   const auto check = [](const Status& written) {
     if (!written.ok()) tools::ExitWithError("relmap", written.message());

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "common/image/point_raster.h"
 #include "common/status.h"
-#include "image/point_raster.h"
 #include "relmap/v1/relevance_service.pb.h"
 
 namespace relmap::client {

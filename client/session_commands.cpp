@@ -4,7 +4,7 @@
 #include <cctype>
 
 #include "cli_commands.h"
-#include "tools/command_line.h"
+#include "common/command_line.h"
 
 namespace relmap::client {
 namespace {

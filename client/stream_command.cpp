@@ -4,9 +4,9 @@
 #include <sstream>
 
 #include "cli_commands.h"
-#include "datasets/csv.h"
+#include "common/command_line.h"
+#include "common/labelled_csv.h"
 #include "progress_bar.h"
-#include "tools/command_line.h"
 
 namespace relmap::client {
 namespace {

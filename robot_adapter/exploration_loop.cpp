@@ -10,6 +10,7 @@
 #include <iostream>
 #include <iterator>
 
+#include "grpc_status.h"
 #include "map_accuracy.h"
 #include "robot_config.h"
 #include "run_record.h"
@@ -46,11 +47,6 @@ std::string OutcomeRequestId(const std::string& run_id, int iteration) {
   return run_id + "/" + std::to_string(iteration);
 }
 
-Status FromGrpc(const grpc::Status& status, const std::string& call) {
-  if (status.ok()) return OkStatus();
-  return Status(static_cast<StatusCode>(status.error_code()), call + ": " + status.error_message());
-}
-
 ExplorationLoop::ExplorationLoop(const RobotConfig& config, client::RelevanceClient& client,
                                  CloudSource& source, PusherDriver& driver,
                                  const std::atomic<bool>* stop, std::FILE* progress)
@@ -82,14 +78,14 @@ Status ExplorationLoop::Start() {
     session_.token.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   } else {
     if (Status status =
-            FromGrpc(client_.CreateSession(config_.session(), &session_), "CreateSession");
+            client::FromGrpc(client_.CreateSession(config_.session(), &session_), "CreateSession");
         !status.ok()) {
       return status;
     }
   }
   // The session must exist and the token fit: GetSession checks both.
   v1::GetSessionResponse current;
-  if (Status status = FromGrpc(client_.GetSession(session_, &current), "GetSession");
+  if (Status status = client::FromGrpc(client_.GetSession(session_, &current), "GetSession");
       !status.ok()) {
     return status;
   }
@@ -178,9 +174,9 @@ Status ExplorationLoop::Iterate(int iteration, RunSummary* summary) {
     v1::ComputeMapsResponse maps;
     const client::PointLabels labels =
         before.truth ? client::PointLabels::kInclude : client::PointLabels::kOmit;
-    if (Status s = FromGrpc(client_.ComputeMaps(session_, before.cloud, &maps, labels,
-                                                client::MapsRepeat::kAfterBrokenConnection),
-                            "ComputeMaps");
+    if (Status s = client::FromGrpc(client_.ComputeMaps(session_, before.cloud, &maps, labels,
+                                                        client::MapsRepeat::kAfterBrokenConnection),
+                                    "ComputeMaps");
         !s.ok()) {
       return s;
     }
@@ -257,7 +253,7 @@ Status ExplorationLoop::Iterate(int iteration, RunSummary* summary) {
                          answer.error_message());
       break;
     }
-    if (Status s = FromGrpc(answer, "PostOutcome"); !s.ok()) return s;
+    if (Status s = client::FromGrpc(answer, "PostOutcome"); !s.ok()) return s;
     if (Status s = Record(directory, "label.json", posted); !s.ok()) return s;
     status.set_state("posted");
     status.set_message(posted.label() == v1::LABEL_MOVEABLE ? "moved" : "still");

@@ -74,7 +74,4 @@ class ExplorationLoop {
 // so that the server never learns an iteration twice.
 std::string OutcomeRequestId(const std::string& run_id, int iteration);
 
-// A gRPC status as relmap's, `call` naming the call.
-Status FromGrpc(const grpc::Status& status, const std::string& call);
-
 }  // namespace relmap::robot

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "exploration/metrics.h"
+#include "common/metrics.h"
 #include "relmap/v1/relevance_service.pb.h"
 
 namespace relmap::robot {
@@ -18,7 +18,7 @@ inline std::optional<double> MapAccuracy(const v1::ComputeMapsResponse& maps,
   if (moveable.size() != static_cast<std::size_t>(maps.supervoxels_size())) return std::nullopt;
   Eigen::VectorXd relevance(maps.supervoxels_size());
   for (int i = 0; i < maps.supervoxels_size(); ++i) relevance[i] = maps.supervoxels(i).relevance();
-  return exploration::SoftScores(relevance, moveable).accuracy;
+  return metrics::SoftScores(relevance, moveable).accuracy;
 }
 
 }  // namespace relmap::robot

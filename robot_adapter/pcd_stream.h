@@ -11,23 +11,23 @@
 #include <string>
 #include <string_view>
 
+#include "common/pcd/pcd_header.h"
 #include "common/status.h"
 #include "posix_io.h"
 
 namespace relmap::robot {
 
-// Where the data of a PCD file ends, from its header.
+// Where the data of a PCD file ends, from its header (common/pcd's parser).
 struct PcdFraming {
-  enum class Data { kAscii, kBinary, kBinaryCompressed };
-  Data data = Data::kAscii;
+  pcd::DataKind data = pcd::DataKind::kAscii;
   std::size_t header_bytes = 0;  // up to and including the DATA line
   std::size_t points = 0;
   std::size_t point_bytes = 0;  // sum of SIZE × COUNT
 };
 
 // The framing of the PCD header at the start of `bytes`; nullopt when `bytes` ends
-// before the DATA line. INVALID_ARGUMENT when it is not a PCD header, or declares
-// more than `max_frame_bytes` of data.
+// before the DATA line's end. INVALID_ARGUMENT when it is not a valid PCD header, or
+// declares more than `max_frame_bytes` of data.
 StatusOr<std::optional<PcdFraming>> ParsePcdFraming(std::string_view bytes,
                                                     std::size_t max_frame_bytes);
 

@@ -18,12 +18,11 @@
 #include "exec_driver.h"
 #include "exploration_loop.h"
 #include "local_server.h"
-#include "ode_scene.h"
 #include "openni2_source.h"
 #include "replay.h"
 #include "robot_config.h"
 #include "server_binary.h"
-#include "sim_robot.h"
+#include "simulated_robot.h"
 #include "stream_source.h"
 #include "tcp_json_driver.h"
 
@@ -61,7 +60,7 @@ int Fail(const Status& status) {
 StatusOr<std::string> ServerAddress(const std::string& address,
                                     std::unique_ptr<client::LocalServer>* local) {
   if (!address.empty()) return address;
-  StatusOr<std::string> binary = sim::FindServerBinary("");
+  StatusOr<std::string> binary = client::FindServerBinary("");
   if (!binary.ok()) return binary.status();
   StatusOr<std::unique_ptr<client::LocalServer>> started = client::LocalServer::Start(*binary);
   if (!started.ok()) return started.status();
@@ -81,18 +80,15 @@ std::chrono::milliseconds Milliseconds(double seconds) {
   return std::chrono::milliseconds(static_cast<std::int64_t>(seconds * 1000));
 }
 
-// The configured cloud source; the simulator's scene, when it is one, into `scene`.
+// The configured cloud source; the simulated robot, when it is one, into `simulated`.
 StatusOr<std::unique_ptr<CloudSource>> MakeSource(const SourceConfig& config,
-                                                  std::unique_ptr<sim::OdeScene>* scene) {
+                                                  std::unique_ptr<SimulatedRobot>* simulated) {
   switch (config.kind_case()) {
     case SourceConfig::kSim: {
-      const SimConfig& sim = config.sim();
-      StatusOr<std::unique_ptr<sim::OdeScene>> loaded =
-          sim::OdeScene::Load(sim.scene(), sim.seed());
-      if (!loaded.ok()) return loaded.status();
-      *scene = std::move(loaded).value();
-      if (sim.width() > 0 && sim.height() > 0) (*scene)->SetImageSize(sim.width(), sim.height());
-      return std::unique_ptr<CloudSource>(std::make_unique<SimSource>(**scene));
+      StatusOr<std::unique_ptr<SimulatedRobot>> made = MakeSimulatedRobot(config.sim());
+      if (!made.ok()) return made.status();
+      *simulated = std::move(made).value();
+      return (*simulated)->Source();
     }
     case SourceConfig::kStdin:
       return std::unique_ptr<CloudSource>(std::make_unique<StreamSource>(STDIN_FILENO, &g_stop));
@@ -125,10 +121,11 @@ StatusOr<std::unique_ptr<CloudSource>> MakeSource(const SourceConfig& config,
       std::make_unique<DirectorySource>(directory.path(), options, &g_stop));
 }
 
-// The configured driver; the sim driver pushes in `scene`.
-std::unique_ptr<PusherDriver> MakeDriver(const RobotConfig& config, sim::OdeScene* scene) {
+// The configured driver; the sim driver pushes in `simulated`'s scene (a sim driver
+// comes with a sim source: ReadRobotConfig checks it).
+std::unique_ptr<PusherDriver> MakeDriver(const RobotConfig& config, SimulatedRobot* simulated) {
   const DriverConfig& driver = config.driver();
-  if (driver.has_sim()) return std::make_unique<SimDriver>(*scene, config.source().sim().seed());
+  if (driver.has_sim()) return simulated->Driver();
   if (driver.has_tcp_json()) {
     return std::make_unique<TcpJsonDriver>(
         driver.tcp_json().address(), Milliseconds(driver.tcp_json().connect_timeout_seconds()),
@@ -166,10 +163,10 @@ int Run(const std::vector<std::string>& args) {
   if (max_pushes > 0) config->set_max_pushes(static_cast<std::uint32_t>(max_pushes));
   if (server.empty()) server = config->server();
 
-  std::unique_ptr<sim::OdeScene> scene;
-  StatusOr<std::unique_ptr<CloudSource>> source = MakeSource(config->source(), &scene);
+  std::unique_ptr<SimulatedRobot> simulated;
+  StatusOr<std::unique_ptr<CloudSource>> source = MakeSource(config->source(), &simulated);
   if (!source.ok()) return Fail(source.status());
-  std::unique_ptr<PusherDriver> driver = MakeDriver(*config, scene.get());
+  std::unique_ptr<PusherDriver> driver = MakeDriver(*config, simulated.get());
 
   std::unique_ptr<client::LocalServer> local;
   StatusOr<std::string> address = ServerAddress(server, &local);

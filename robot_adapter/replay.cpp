@@ -2,6 +2,7 @@
 #include "replay.h"
 
 #include "exploration_loop.h"
+#include "grpc_status.h"
 #include "map_accuracy.h"
 #include "robot_messages.pb.h"
 #include "run_record.h"
@@ -12,7 +13,8 @@ StatusOr<ReplayResult> ReplayRun(const std::string& run_dir, client::RelevanceCl
   RunSession run;
   if (Status s = ReadJson(run_dir + "/session.json", &run); !s.ok()) return s;
   ReplayResult result;
-  if (Status s = FromGrpc(client.CreateSession(run.config(), &result.session), "CreateSession");
+  if (Status s =
+          client::FromGrpc(client.CreateSession(run.config(), &result.session), "CreateSession");
       !s.ok()) {
     return s;
   }
@@ -29,9 +31,9 @@ StatusOr<ReplayResult> ReplayRun(const std::string& run_dir, client::RelevanceCl
     if (!before.ok()) return before.status();
 
     v1::ComputeMapsResponse maps;
-    if (Status s =
-            FromGrpc(client.ComputeMaps(result.session, *before, &maps, client::PointLabels::kOmit),
-                     "ComputeMaps");
+    if (Status s = client::FromGrpc(
+            client.ComputeMaps(result.session, *before, &maps, client::PointLabels::kOmit),
+            "ComputeMaps");
         !s.ok()) {
       return s;
     }
@@ -50,7 +52,7 @@ StatusOr<ReplayResult> ReplayRun(const std::string& run_dir, client::RelevanceCl
           MapAccuracy(maps, std::vector<bool>(truth.moveable().begin(), truth.moveable().end()));
     }
     v1::PostOutcomeResponse posted;
-    if (Status s = FromGrpc(
+    if (Status s = client::FromGrpc(
             client.PostOutcome(result.session, maps.frame_id(), target.supervoxel(), label.label(),
                                OutcomeRequestId(replay_id, iteration), &posted),
             "PostOutcome");

@@ -4,10 +4,41 @@
 #include <memory>
 
 #include "ground_truth.h"
+#include "ode_scene.h"
 #include "packed_cloud.h"
 #include "seeds.h"
+#include "simulated_robot.h"
 
 namespace relmap::robot {
+namespace {
+
+class OdeRobot final : public SimulatedRobot {
+ public:
+  OdeRobot(std::unique_ptr<sim::OdeScene> scene, std::uint64_t seed)
+      : scene_(std::move(scene)), seed_(seed) {}
+  std::unique_ptr<CloudSource> Source() override { return std::make_unique<SimSource>(*scene_); }
+  std::unique_ptr<PusherDriver> Driver() override {
+    return std::make_unique<SimDriver>(*scene_, seed_);
+  }
+
+ private:
+  std::unique_ptr<sim::OdeScene> scene_;
+  std::uint64_t seed_;
+};
+
+}  // namespace
+
+StatusOr<std::unique_ptr<SimulatedRobot>> MakeSimulatedRobot(const SimConfig& config) {
+  StatusOr<std::unique_ptr<sim::OdeScene>> loaded =
+      sim::OdeScene::Load(config.scene(), config.seed());
+  if (!loaded.ok()) return loaded.status();
+  std::unique_ptr<sim::OdeScene> scene = std::move(loaded).value();
+  if (config.width() > 0 && config.height() > 0) {
+    scene->SetImageSize(config.width(), config.height());
+  }
+  return std::unique_ptr<SimulatedRobot>(
+      std::make_unique<OdeRobot>(std::move(scene), config.seed()));
+}
 
 StatusOr<std::optional<SourceFrame>> SimSource::Next() {
   auto frame = std::make_shared<sim::CameraFrame>(scene_.Capture());

@@ -6,7 +6,7 @@
 #include <regex>
 #include <set>
 
-#include "json_writer.h"
+#include "common/json_writer.h"
 
 namespace relmap::robot {
 namespace {

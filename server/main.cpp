@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/command_line.h"
 #include "grpc/health/v1/health.pb.h"
 #include "server_options.h"
 #include "service/metrics_http.h"
@@ -32,7 +33,6 @@
 #include "session/credentials.h"
 #include "session/session_registry.h"
 #include "store_opening.h"
-#include "tools/command_line.h"
 
 namespace {
 

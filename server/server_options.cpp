@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/command_line.h"
 #include "store_opening.h"
-#include "tools/command_line.h"
 
 namespace relmap::server {
 namespace {

@@ -7,7 +7,7 @@
 #include <optional>
 #include <ostream>
 
-#include "json_writer.h"
+#include "common/json_writer.h"
 #include "replication.h"
 #include "spread.h"
 
@@ -46,7 +46,7 @@ std::string Milliseconds(double value) {
   return text;
 }
 
-void WriteScores(const exploration::Scores& scores, std::ostream& out) {
+void WriteScores(const metrics::Scores& scores, std::ostream& out) {
   out << ',' << Field(scores.precision) << ',' << Field(scores.recall) << ','
       << Field(scores.accuracy);
 }
@@ -70,7 +70,7 @@ bool RanToTheEnd(const ReplicationResult& r, const ExperimentOptions& options) {
   return r.error.empty() && static_cast<int>(r.iterations.size()) == options.iterations;
 }
 
-void WriteScoresJson(const exploration::Scores& scores, JsonWriter& json) {
+void WriteScoresJson(const metrics::Scores& scores, JsonWriter& json) {
   json.BeginObject()
       .Key("precision")
       .Number(scores.precision)
@@ -154,8 +154,8 @@ void WriteReplicationJson(const ReplicationResult& r, const ExperimentOptions& o
 
 // Mean, min and max over `finished` of one final score.
 void WriteFinalSpread(const std::vector<const IterationRecord*>& finished,
-                      std::optional<double> exploration::Scores::*score,
-                      exploration::Scores IterationRecord::*metric, JsonWriter& json) {
+                      std::optional<double> metrics::Scores::*score,
+                      metrics::Scores IterationRecord::*metric, JsonWriter& json) {
   std::vector<double> values;
   for (const IterationRecord* last : finished) {
     if (const std::optional<double> value = last->*metric.*score) values.push_back(*value);
@@ -178,7 +178,7 @@ void WriteFinalSpread(const std::vector<const IterationRecord*>& finished,
 }
 
 void WriteFinal(const std::vector<const IterationRecord*>& finished, JsonWriter& json) {
-  using exploration::Scores;
+  using metrics::Scores;
   json.BeginObject();
   json.Key("replications_counted").Unsigned(finished.size());
   for (const auto& [name, metric] : {std::pair{"thresholded_soft", &IterationRecord::thresholded},

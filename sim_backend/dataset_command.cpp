@@ -40,7 +40,7 @@ StatusOr<Collected> CollectFrames(const DatasetOptions& options, SimulatedScene&
   v1::SessionConfig config;
   config.set_seed(options.seed);
   client::SessionHandle session;
-  if (Status created = FromGrpc(client.CreateSession(config, &session), "CreateSession");
+  if (Status created = client::FromGrpc(client.CreateSession(config, &session), "CreateSession");
       !created.ok()) {
     return created;
   }

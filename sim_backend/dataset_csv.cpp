@@ -1,18 +1,12 @@
-// The two files, through std::to_chars: shortest round-trip decimals without a locale,
-// so that the same rows give the same bytes on every machine.
+// The two files: the labelled CSV through common/labelled_csv.h, the frames beside it.
 #include "dataset_csv.h"
 
-#include <charconv>
 #include <fstream>
+
+#include "common/labelled_csv.h"
 
 namespace relmap::sim {
 namespace {
-
-void AppendNumber(double value, std::string* line) {
-  char text[32];
-  const auto [end, error] = std::to_chars(text, text + sizeof text, value);
-  line->append(text, end);
-}
 
 Status Written(std::ofstream& file, const std::string& path) {
   file.flush();
@@ -26,18 +20,10 @@ Status WriteDataset(const std::vector<DatasetRow>& rows, const std::string& csv_
                     const std::string& frames_path) {
   std::ofstream csv(csv_path, std::ios::binary | std::ios::trunc);
   std::ofstream frames(frames_path, std::ios::binary | std::ios::trunc);
-  std::string line = "label";
-  const std::size_t dimension = rows.empty() ? 0 : rows.front().features.size();
-  for (std::size_t k = 1; k <= dimension; ++k) line += ",f" + std::to_string(k);
-  csv << line << '\n';
+  datasets::WriteLabelledCsvHeader(rows.empty() ? 0 : rows.front().features.size(), csv);
   frames << "frame\n";
   for (const DatasetRow& row : rows) {
-    line.assign(1, row.moveable ? '1' : '0');
-    for (const double value : row.features) {
-      line += ',';
-      AppendNumber(value, &line);
-    }
-    csv << line << '\n';
+    datasets::WriteLabelledCsvRow(row.moveable ? 1 : 0, row.features, csv);
     frames << row.frame << '\n';
   }
   if (Status status = Written(csv, csv_path); !status.ok()) return status;

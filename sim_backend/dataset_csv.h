@@ -1,5 +1,5 @@
 // A dataset's rows on disk: the labelled CSV that relmap-cmm and relmap-bench-learning
-// read (server/tools/datasets/csv.h), and beside it each row's frame.
+// read (common/labelled_csv.h), and beside it each row's frame.
 #pragma once
 
 #include <string>

@@ -18,7 +18,7 @@ StatusOr<LabelledFrame> LabelFrame(SimulatedScene& scene, client::RelevanceClien
   scene.Respawn(IterationSeed(seed, SeedStream::kRespawn, frame));
   const CameraFrame captured = scene.Capture();
   v1::ComputeMapsResponse maps;
-  if (Status status = FromGrpc(
+  if (Status status = client::FromGrpc(
           client.ComputeMaps(session, PackCloud(captured), &maps, client::PointLabels::kInclude,
                              client::MapsRepeat::kAfterBrokenConnection,
                              client::SupervoxelFeatures::kInclude),

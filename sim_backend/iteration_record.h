@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "exploration/metrics.h"
+#include "common/metrics.h"
 #include "ground_truth.h"
 #include "simulated_scene.h"
 
@@ -49,8 +49,8 @@ struct IterationRecord {
   std::size_t supervoxels = 0;
   // The scores (§6) of the relevance map computed at this iteration, before its
   // own outcome was learned.
-  exploration::Scores thresholded;
-  exploration::Scores soft;
+  metrics::Scores thresholded;
+  metrics::Scores soft;
   // The pushed supervoxel; unset when the frame had no usable one.
   std::optional<std::uint32_t> target;
   // The label the session learned (true = moveable) and the ground truth of the

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "image/line_plot.h"
+#include "common/image/line_plot.h"
 #include "spread.h"
 
 namespace relmap::sim {
@@ -37,8 +37,8 @@ Status Plot(const std::string& path, const std::string& title, const std::string
 }
 
 // A score of one metric, as an Extract.
-Extract ScoreOf(exploration::Scores IterationRecord::*metric,
-                std::optional<double> exploration::Scores::*score) {
+Extract ScoreOf(metrics::Scores IterationRecord::*metric,
+                std::optional<double> metrics::Scores::*score) {
   return [metric, score](const IterationRecord& i) { return i.*metric.*score; };
 }
 
@@ -46,7 +46,7 @@ Extract ScoreOf(exploration::Scores IterationRecord::*metric,
 
 Status WriteCurvePlots(const std::vector<ReplicationResult>& replications,
                        const std::string& directory) {
-  using exploration::Scores;
+  using metrics::Scores;
   const std::string suffix = " (mean, min-max over " + std::to_string(replications.size()) +
                              (replications.size() == 1 ? " replication)" : " replications)");
   for (const auto& [name, score] :

@@ -96,7 +96,7 @@ class Replication {
         change.set_noise_quantisation(QuantisationCoefficient(*noise));
       }
     }
-    return FromGrpc(client_.CreateSession(config, &session_), "CreateSession");
+    return client::FromGrpc(client_.CreateSession(config, &session_), "CreateSession");
   }
 
   // paper2018 only: §5's 20 neighbours within 1 cm assume a 640×480 Kinect; a camera of the
@@ -125,9 +125,9 @@ class Replication {
     stage = Clock::now();
     v1::ComputeMapsResponse maps;
     Status status =
-        FromGrpc(client_.ComputeMaps(session_, cloud, &maps, client::PointLabels::kInclude,
-                                     client::MapsRepeat::kAfterBrokenConnection),
-                 "ComputeMaps");
+        client::FromGrpc(client_.ComputeMaps(session_, cloud, &maps, client::PointLabels::kInclude,
+                                             client::MapsRepeat::kAfterBrokenConnection),
+                         "ComputeMaps");
     if (!status.ok()) return status;
     t.maps_ms = MillisecondsSince(stage);
     t.server_maps_ms = maps.timings().total_ms();
@@ -173,14 +173,14 @@ class Replication {
   }
 
   // Both §6 scores of the relevance map. The metrics are the one implementation of §6
-  // (exploration/metrics.h), shared by the server's tools and the simulator.
+  // (common/metrics.h), shared by the server's tools and the simulator.
   static void Score(const v1::ComputeMapsResponse& maps, const std::vector<bool>& object,
                     IterationRecord* record) {
     Eigen::VectorXd relevance(maps.supervoxels_size());
     for (int i = 0; i < maps.supervoxels_size(); ++i)
       relevance[i] = maps.supervoxels(i).relevance();
-    record->thresholded = exploration::ThresholdedSoftScores(relevance, object);
-    record->soft = exploration::SoftScores(relevance, object);
+    record->thresholded = metrics::ThresholdedSoftScores(relevance, object);
+    record->soft = metrics::SoftScores(relevance, object);
   }
 
   // Pushes (physical) and posts the outcome of supervoxel `index` of `maps` (computed on
@@ -222,7 +222,7 @@ class Replication {
     }
     // The push taught nothing; the next iteration asks for new maps.
     if (client::IsFrameGone(posted)) return OkStatus();
-    if (Status status = FromGrpc(posted, "PostOutcome"); !status.ok()) return status;
+    if (Status status = client::FromGrpc(posted, "PostOutcome"); !status.ok()) return status;
     const bool label = response.label() == v1::LABEL_MOVEABLE;
     if (response.has_evidence()) {
       const v1::ChangeEvidence& e = response.evidence();

@@ -1,6 +1,6 @@
 # relmap_sim_runner and relmap-sim: the experiment runner. It talks to relmap-server
-# over the wire only (client library, proto API) and scores maps with exploration's
-# metrics (pure math); never the server's session, service or perception libraries.
+# over the wire only (client library, proto API) and scores maps with common/metrics.h
+# (pure maths); it includes no header of server/.
 add_library(relmap_sim_runner STATIC
   curves.cpp
   dataset_csv.cpp
@@ -15,18 +15,14 @@ add_library(relmap_sim_runner STATIC
   plots.cpp
   replication.cpp
   scene_loading.cpp
-  server_binary.cpp
   server_connection.cpp
   spread.cpp
   target_choice.cpp)
 target_include_directories(relmap_sim_runner PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
 target_link_libraries(relmap_sim_runner
-  PUBLIC relmap_client relmap_client_rendering relmap_json_writer relmap_image relmap_exploration relmap_proto
+  PUBLIC relmap_client relmap_client_rendering relmap_common relmap_image relmap_proto
          Eigen3::Eigen
   PRIVATE relmap_local_server Threads::Threads relmap_warnings)
-# The server relmap-sim starts when no --server is given and none lies beside it.
-target_compile_definitions(relmap_sim_runner PRIVATE
-  RELMAP_SERVER_BINARY="$<TARGET_FILE:relmap-server>")
 # The ODE world (world.cmake) once it exists: scene_loading.cpp then loads its scenes.
 if(TARGET relmap_sim_world)
   target_link_libraries(relmap_sim_runner PUBLIC relmap_sim_world)

@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "image/image.h"
-#include "image/point_raster.h"
+#include "common/image/image.h"
+#include "common/image/point_raster.h"
 #include "ode_scene.h"
 #include "scene_file.h"
 #include "scene_settings.h"

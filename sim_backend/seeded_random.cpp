@@ -3,25 +3,17 @@
 
 #include <cmath>
 
+#include "common/random.h"
+
 namespace relmap::sim {
 namespace {
 constexpr double kTwoPi = 6.28318530717958647692;
 }  // namespace
 
-std::uint64_t Mix64(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
 SeededRandom::SeededRandom(std::uint64_t seed, std::uint64_t stream)
-    : engine_(Mix64(seed ^ Mix64(stream))) {}
+    : engine_(SplitMix64At(seed ^ SplitMix64At(stream))) {}
 
-double SeededRandom::Uniform01() {
-  // The top 53 bits as a fraction: exactly representable, never 1.
-  return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-}
+double SeededRandom::Uniform01() { return UnitFromBits(engine_()); }
 
 double SeededRandom::Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform01(); }
 

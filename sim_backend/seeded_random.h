@@ -33,7 +33,4 @@ class SeededRandom {
   std::mt19937_64 engine_;
 };
 
-// SplitMix64's finaliser: a well-mixed 64-bit function of `x`.
-std::uint64_t Mix64(std::uint64_t x);
-
 }  // namespace relmap::sim

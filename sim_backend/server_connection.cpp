@@ -15,7 +15,7 @@ StatusOr<ServerConnection> ConnectOrStartServer(const std::string& server,
   ServerConnection connection;
   connection.address = server;
   if (connection.address.empty()) {
-    StatusOr<std::string> binary = FindServerBinary(server_binary);
+    StatusOr<std::string> binary = client::FindServerBinary(server_binary);
     if (!binary.ok()) return binary.status();
     StatusOr<std::unique_ptr<client::LocalServer>> started =
         client::LocalServer::Start(*binary, options);

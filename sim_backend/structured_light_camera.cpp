@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/random.h"
 #include "kinect_noise_model.h"
 #include "ray_casting.h"
 
@@ -15,7 +16,6 @@ namespace relmap::sim {
 namespace {
 
 constexpr double kTwoPi = 6.28318530717958647692;
-constexpr std::uint64_t kGamma = 0x9e3779b97f4a7c15ull;  // SplitMix64's increment
 // Rays are cast a little past max_range so that depths rounded down into range
 // still have a surface behind them.
 constexpr double kCastMargin = 1.1;
@@ -39,9 +39,9 @@ enum Slot : std::uint64_t {
 class PixelDraws {
  public:
   PixelDraws(std::uint64_t frame_seed, std::size_t pixel)
-      : base_(frame_seed + pixel * kSlotsPerPixel * kGamma) {}
+      : base_(frame_seed + pixel * kSlotsPerPixel * kSplitMix64Gamma) {}
   double Uniform01(std::uint64_t slot) const {
-    return static_cast<double>(Mix64(base_ + slot * kGamma) >> 11) * 0x1.0p-53;
+    return UnitFromBits(SplitMix64At(base_ + slot * kSplitMix64Gamma));
   }
   // Two independent standard normals from slots `slot` and `slot + 1` (Box-Muller).
   Eigen::Vector2d Gaussians(std::uint64_t slot) const {

@@ -15,13 +15,11 @@ add_library(relmap_sim_world STATIC
   kinect_noise_model.cpp ode_world.cpp ode_bodies.cpp ray_casting.cpp ray_camera.cpp
   structured_light_camera.cpp point_distance.cpp scene_dynamics.cpp
   push_primitive.cpp ode_scene.cpp)
-# common/status.h (header-only) comes from server/; nothing of the server is linked.
-target_include_directories(relmap_sim_world PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}
-                                                   ${PROJECT_SOURCE_DIR}/server)
+target_include_directories(relmap_sim_world PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
 target_compile_definitions(relmap_sim_world
   PRIVATE RELMAP_SIM_SCENES_DIR="${CMAKE_CURRENT_SOURCE_DIR}/scenes")
 target_link_libraries(relmap_sim_world
-  PUBLIC relmap_sim_scene_proto Eigen3::Eigen PkgConfig::ODE
+  PUBLIC relmap_common relmap_sim_scene_proto Eigen3::Eigen PkgConfig::ODE
   PRIVATE protobuf::libprotobuf Threads::Threads relmap_warnings)
 
 # `relmap-sim scenes` and `relmap-sim render`, for the runner's executable.

@@ -15,9 +15,9 @@
 #include "cmm/config.h"
 #include "cmm/covariance_prior.h"
 #include "cmm/dataset.h"
-#include "cmm/random.h"
 #include "cmm/snapshot.h"
 #include "cmm/tolerance_threshold.h"
+#include "common/random.h"
 #include "common/status.h"
 
 namespace relmap::cmm {

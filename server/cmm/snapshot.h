@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cmm/config.h"
-#include "cmm/random.h"
+#include "common/random.h"
 
 namespace relmap::cmm {
 

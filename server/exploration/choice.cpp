@@ -46,8 +46,7 @@ Eigen::VectorXd ChoiceMap(const Eigen::VectorXd& uncertainty, const Eigen::Vecto
   return w / total;
 }
 
-int DrawTarget(const Eigen::VectorXd& choice, int interactions, bool paper_quirks,
-               cmm::Random& random) {
+int DrawTarget(const Eigen::VectorXd& choice, int interactions, bool paper_quirks, Random& random) {
   const auto n = static_cast<std::size_t>(choice.size());
   assert(n > 0);
   if (paper_quirks && interactions < kPaperUniformChoices) {

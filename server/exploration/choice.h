@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 
 #include "cmm/collaborative_mixture_models.h"
-#include "cmm/random.h"
+#include "common/random.h"
 #include "exploration/exploration_config.h"
 
 namespace relmap::exploration {
@@ -24,7 +24,6 @@ Eigen::VectorXd ChoiceMap(const Eigen::VectorXd& uncertainty, const Eigen::Vecto
 // Draws the index of the next target from a choice map with the session's RNG.
 // `interactions` is the number of targets drawn before; with `paper_quirks`
 // the first kPaperUniformChoices draws are uniform over all but the last index.
-int DrawTarget(const Eigen::VectorXd& choice, int interactions, bool paper_quirks,
-               cmm::Random& random);
+int DrawTarget(const Eigen::VectorXd& choice, int interactions, bool paper_quirks, Random& random);
 
 }  // namespace relmap::exploration

@@ -10,7 +10,7 @@ namespace relmap::exploration {
 
 FrameMaps ComputeFrameMaps(const cmm::CollaborativeMixtureModels& model,
                            const Eigen::Ref<const Eigen::MatrixXd>& features,
-                           const ExplorationConfig& config, int interactions, cmm::Random* random) {
+                           const ExplorationConfig& config, int interactions, Random* random) {
   const Eigen::Index n = features.rows();
   std::vector<Eigen::Index> usable;
   usable.reserve(static_cast<std::size_t>(n));

@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 
 #include "cmm/collaborative_mixture_models.h"
-#include "cmm/random.h"
+#include "common/random.h"
 #include "exploration/exploration_config.h"
 
 namespace relmap::exploration {
@@ -27,6 +27,6 @@ struct FrameMaps {
 // or null to compute the maps without drawing a target (target stays -1).
 FrameMaps ComputeFrameMaps(const cmm::CollaborativeMixtureModels& model,
                            const Eigen::Ref<const Eigen::MatrixXd>& features,
-                           const ExplorationConfig& config, int interactions, cmm::Random* random);
+                           const ExplorationConfig& config, int interactions, Random* random);
 
 }  // namespace relmap::exploration

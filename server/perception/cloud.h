@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "common/pcd/point.h"
 #include "common/status.h"
 #include "perception/perception_config.h"
 
@@ -22,10 +23,7 @@ namespace relmap::perception {
 using PclCloud = pcl::PointCloud<pcl::PointXYZRGBA>;
 
 // One point as plain data. A hole of a depth camera has NaN x, y, z.
-struct CloudPoint {
-  float x = 0, y = 0, z = 0;
-  std::uint8_t r = 0, g = 0, b = 0, a = 255;
-};
+using CloudPoint = pcd::Point;
 
 // Immutable and cheap to copy (the points are shared).
 class Cloud {

@@ -339,7 +339,7 @@ StatusOr<SessionStats> Session::ImportState(const SessionState& state, std::int6
     const SessionCounters imported{0, static_cast<std::int64_t>(state.interactions)};
     if (Status stored = store_->IncrementCounters(id_, imported); !stored.ok()) return stored;
   }
-  random_ = cmm::Random::FromState(state.target_random);
+  random_ = Random::FromState(state.target_random);
   interactions_ = state.interactions;
   return StatsLocked();
 }

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "cmm/collaborative_mixture_models.h"
-#include "cmm/random.h"
+#include "common/random.h"
 #include "common/status.h"
 #include "exploration/frame_maps.h"
 #include "perception/change_detector.h"
@@ -47,7 +47,7 @@ inline constexpr std::size_t kRememberedAnswers = 10000;
 struct SessionState {
   Eigen::MatrixXd features;  // one sample per row, in learning order
   std::vector<int> labels;
-  cmm::Random::State target_random{};
+  Random::State target_random{};
   std::uint64_t interactions = 0;
 };
 
@@ -149,7 +149,7 @@ class Session {
 
   mutable std::mutex mutex_;
   cmm::CollaborativeMixtureModels model_;
-  cmm::Random random_;  // target draws; the classifier has its own stream
+  Random random_;  // target draws; the classifier has its own stream
   std::uint64_t next_frame_id_ = 1;
   std::uint64_t frames_ = 0;
   std::uint64_t interactions_ = 0;

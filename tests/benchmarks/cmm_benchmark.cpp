@@ -3,8 +3,8 @@
 #include <benchmark/benchmark.h>
 
 #include "cmm/collaborative_mixture_models.h"
-#include "cmm/random.h"
 #include "cmm/snapshot.h"
+#include "common/random.h"
 #include "datasets/synthetic_problems.h"
 
 namespace relmap::cmm {

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <string>
 
+#include "common/command_line.h"
 #include "datasets/synthetic_problems.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
-#include "tools/command_line.h"
 
 int main(int argc, char** argv) {
   using namespace relmap;

@@ -1,13 +1,14 @@
 // The map colours (black→yellow relevance, blue→red choice) and their mapping onto
 // the points through the server's point labels, over plain coloured points and over
-// decoded clouds.
+// the points of a PCD file as the CLI reads it.
 #include "map_rendering.h"
 
 #include <gtest/gtest.h>
 
 #include <limits>
 
-#include "map_rendering_cloud.h"
+#include "common/pcd/pcd_encoder.h"
+#include "map_rendering_pcd.h"
 
 namespace relmap::client {
 namespace {
@@ -29,14 +30,15 @@ TEST(ChoiceColour, IsScaledToTheFramesMostLikelyTarget) {
 
 // A 3×3 organized cloud: the left two columns are supervoxel 0, the right column
 // supervoxel 1 except its bottom point, which no supervoxel holds; the centre is a hole.
+// The cloud is read back from a PCD file, as the CLI reads the file it sent.
 struct Scene {
-  perception::Cloud cloud;
+  pcd::Points cloud;
   v1::ComputeMapsResponse maps;
 };
 
 Scene ThreeByThree() {
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  std::vector<perception::CloudPoint> points(9);
+  std::vector<pcd::Point> points(9);
   for (int i = 0; i < 9; ++i) {
     points[i] = {0.1f * static_cast<float>(i % 3),
                  0.1f * static_cast<float>(i / 3),
@@ -47,7 +49,7 @@ Scene ThreeByThree() {
                  255};
   }
   points[4].x = points[4].y = points[4].z = nan;
-  Scene scene{perception::MakeCloud(3, 3, points).value(), {}};
+  Scene scene{pcd::ReadPcd(pcd::EncodePcd(3, 3, points)).value(), {}};
   for (const int label : {0, 0, 1, 0, -1, 1, 0, 0, -1}) scene.maps.add_point_labels(label);
   v1::Supervoxel* zero = scene.maps.add_supervoxels();
   zero->set_id(0), zero->set_relevance(1.0), zero->set_choice(0.25);
@@ -100,7 +102,7 @@ std::vector<image::ColouredPoint> ThreeByThreePoints() {
   const Scene scene = ThreeByThree();
   std::vector<image::ColouredPoint> points(9);
   for (std::size_t i = 0; i < 9; ++i) {
-    const perception::CloudPoint p = scene.cloud.point(i);
+    const pcd::Point& p = scene.cloud.points[i];
     const std::uint8_t level = i % 3 == 2 ? 255 : 0;
     points[i] = {p.x, p.y, p.z, {level, level, level}};
   }
@@ -121,7 +123,7 @@ TEST(ColourPointsOfPlainPoints, GreysTheUnlabelledPointsByTheirOwnColour) {
             (Rgb{80, 80, 80}));  // black: 80 + 0
 }
 
-TEST(ColourPointsOfPlainPoints, AgreesWithTheDecodedCloud) {
+TEST(ColourPointsOfPlainPoints, AgreesWithThePointsOfThePcd) {
   const Scene scene = ThreeByThree();
   const auto plain = ColourPoints(3, 3, ThreeByThreePoints(), scene.maps, MapKind::kChoice);
   const auto decoded = ColourPoints(scene.cloud, scene.maps, MapKind::kChoice);

@@ -1,5 +1,5 @@
 // EncodePcd writes what DecodePcd (and so the server) reads back, point for point.
-#include "perception/pcd_encoder.h"
+#include "common/pcd/pcd_encoder.h"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +18,7 @@ TEST(PcdEncoder, AnOrganizedCloudDecodesBackExactlyWithItsHoles) {
                                           {nan, nan, nan, 0, 0, 0, 255},
                                           {-0.3f, 0.25f, 1.5f, 10, 200, 30, 255},
                                           {0.0f, -0.1f, 0.8f, 1, 2, 3, 255}};
-  const StatusOr<Cloud> cloud = DecodePcd(EncodePcd(2, 2, points));
+  const StatusOr<Cloud> cloud = DecodePcd(pcd::EncodePcd(2, 2, points));
   ASSERT_TRUE(cloud.ok()) << cloud.status().message();
   EXPECT_EQ(cloud->width(), 2u);
   EXPECT_EQ(cloud->height(), 2u);

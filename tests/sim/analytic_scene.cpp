@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "seeds.h"
+#include "common/random.h"
 
 namespace relmap::sim::testing {
 namespace {
@@ -20,14 +20,11 @@ constexpr float kClearance = 0.02f;
 // A push reaches a body whose surface lies this close to the target point.
 constexpr float kReach = 0.02f;
 
-// A SplitMix64 stream over seeds.h's mix: uniform numbers in [0, 1).
+// A SplitMix64 stream: uniform numbers in [0, 1).
 class Uniforms {
  public:
   explicit Uniforms(std::uint64_t seed) : state_(seed) {}
-  float Next() {
-    state_ += 0x9e3779b97f4a7c15ull;
-    return static_cast<float>(static_cast<double>(MixSeedBits(state_) >> 11) * 0x1.0p-53);
-  }
+  float Next() { return static_cast<float>(UnitFromBits(SplitMix64Next(state_))); }
   float In(float low, float high) { return low + (high - low) * Next(); }
 
  private:

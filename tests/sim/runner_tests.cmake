@@ -8,8 +8,7 @@ relmap_add_gtest(sim_runner_test
   SOURCES analytic_scene_test.cpp curves_test.cpp dataset_options_test.cpp
           experiment_options_test.cpp
           ground_truth_test.cpp packed_cloud_test.cpp target_choice_test.cpp
-  # perception only to decode packed clouds with the server's own decoder.
-  LIBRARIES relmap_sim_analytic_scene relmap_sim_runner relmap_perception
+  LIBRARIES relmap_sim_analytic_scene relmap_sim_runner
   LABELS unit)
 
 relmap_add_gtest(sim_runner_end_to_end_test

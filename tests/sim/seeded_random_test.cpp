@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "common/random.h"
+
 namespace relmap::sim {
 namespace {
 
@@ -64,7 +66,7 @@ TEST(SeededRandom, RotationsAreUnitAndCoverTheSphere) {
 TEST(SeededRandom, DrawsAreExplicitArithmeticOnMt19937_64) {
   // std::mt19937_64's 10000th output for the default seed is fixed by the C++
   // standard; Uniform01 is its top 53 bits / 2^53, whatever the library.
-  std::mt19937_64 engine(Mix64(0 ^ Mix64(0)));
+  std::mt19937_64 engine(SplitMix64At(0 ^ SplitMix64At(0)));
   SeededRandom random(0, 0);
   const std::uint64_t word = engine();
   EXPECT_EQ(random.Uniform01(), static_cast<double>(word >> 11) / 9007199254740992.0);

@@ -14,12 +14,12 @@
 #include "cmm/collaborative_mixture_models.h"
 #include "cmm/config_spec.h"
 #include "cmm/log_math.h"
-#include "cmm/random.h"
-#include "datasets/csv.h"
+#include "common/command_line.h"
+#include "common/labelled_csv.h"
+#include "common/metrics.h"
+#include "common/random.h"
 #include "exploration/choice.h"
-#include "exploration/metrics.h"
 #include "tools/cmm/latency.h"
-#include "tools/command_line.h"
 
 namespace relmap::tools {
 namespace {
@@ -130,7 +130,7 @@ std::string Number(std::optional<double> value) {
   return value && std::isfinite(*value) ? fmt::format("{:.6g}", *value) : "null";
 }
 
-std::string ScoresJson(const exploration::Scores& s) {
+std::string ScoresJson(const metrics::Scores& s) {
   return fmt::format(R"({{"precision":{},"recall":{},"accuracy":{}}})", Number(s.precision),
                      Number(s.recall), Number(s.accuracy));
 }
@@ -141,8 +141,8 @@ std::string LatencyJson(const LatencyRecorder::Summary& s) {
 }
 
 struct TestScores {
-  exploration::Scores soft;
-  exploration::Scores thresholded;
+  metrics::Scores soft;
+  metrics::Scores thresholded;
   double accuracy_at_half = 0.0;  // fraction of samples on the right side of 0.5
   std::optional<double> balanced_accuracy, log_loss, brier;
 };
@@ -151,12 +151,12 @@ TestScores Score(const cmm::CollaborativeMixtureModels& model,
                  const datasets::LabelledSamples& test) {
   const Eigen::VectorXd p = model.Predict(test.features);
   const std::vector<bool> moveable(test.labels.begin(), test.labels.end());
-  TestScores scores{exploration::SoftScores(p, moveable),
-                    exploration::ThresholdedSoftScores(p, moveable),
+  TestScores scores{metrics::SoftScores(p, moveable),
+                    metrics::ThresholdedSoftScores(p, moveable),
                     0.0,
-                    exploration::BalancedAccuracy(p, moveable),
-                    exploration::LogLoss(p, moveable),
-                    exploration::BrierScore(p, moveable)};
+                    metrics::BalancedAccuracy(p, moveable),
+                    metrics::LogLoss(p, moveable),
+                    metrics::BrierScore(p, moveable)};
   int right = 0;
   for (Eigen::Index i = 0; i < p.size(); ++i) right += (p[i] >= 0.5) == moveable[i] ? 1 : 0;
   scores.accuracy_at_half = static_cast<double>(right) / static_cast<double>(p.size());
@@ -296,7 +296,7 @@ class Run {
   datasets::LabelledSamples train_;
   std::optional<datasets::LabelledSamples> test_;
   cmm::CollaborativeMixtureModels model_;
-  cmm::Random sampler_;
+  Random sampler_;
   LatencyRecorder update_, predict_, choice_;
   std::vector<CurvePoint> curve_;
 };

@@ -6,9 +6,9 @@
 #include <string>
 #include <string_view>
 
-#include "datasets/csv.h"
+#include "common/command_line.h"
+#include "common/labelled_csv.h"
 #include "datasets/synthetic_problems.h"
-#include "tools/command_line.h"
 
 namespace {
 

@@ -9,14 +9,14 @@
 #include <numbers>
 #include <string>
 
-#include "cmm/random.h"
+#include "common/random.h"
 
 namespace relmap::datasets {
 namespace {
 
 class Gaussian {
  public:
-  explicit Gaussian(cmm::Random& random) : random_(random) {}
+  explicit Gaussian(Random& random) : random_(random) {}
   double operator()() {
     // Box-Muller; 1 − U keeps the logarithm finite.
     const double radius = std::sqrt(-2.0 * std::log(1.0 - random_.UniformUnit()));
@@ -24,10 +24,10 @@ class Gaussian {
   }
 
  private:
-  cmm::Random& random_;
+  Random& random_;
 };
 
-Eigen::Vector2d PlanePoint(Problem problem, int label, cmm::Random& random) {
+Eigen::Vector2d PlanePoint(Problem problem, int label, Random& random) {
   const double pi = std::numbers::pi;
   const double t = random.UniformUnit();
   switch (problem) {
@@ -66,7 +66,7 @@ StatusOr<Problem> ParseProblem(std::string_view name) {
 }
 
 LabelledSamples MakeProblem(const ProblemOptions& options) {
-  cmm::Random random(options.seed);
+  Random random(options.seed);
   Gaussian gaussian(random);
   const int p = std::max(2, options.dimension);
   const int constant = std::clamp(options.constant_dimensions, 0, p - 2);
@@ -74,7 +74,7 @@ LabelledSamples MakeProblem(const ProblemOptions& options) {
 
   Eigen::MatrixXd basis = Eigen::MatrixXd::Identity(varying, 2);
   if (varying > 2) {
-    cmm::Random embedding_random(options.embedding_seed);
+    Random embedding_random(options.embedding_seed);
     Gaussian embedding_gaussian(embedding_random);
     Eigen::MatrixXd draw(varying, 2);
     for (int i = 0; i < draw.size(); ++i) draw.data()[i] = embedding_gaussian();
@@ -111,7 +111,7 @@ void FlipLabels(LabelledSamples& samples, double fraction, std::uint64_t seed) {
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
   // The first `flips` steps of a Fisher-Yates shuffle: a uniform subset.
-  cmm::Random random(seed);
+  Random random(seed);
   for (std::size_t i = 0; i < flips; ++i) {
     std::swap(order[i], order[i + random.UniformIndex(n - i)]);
     samples.labels[order[i]] = 1 - samples.labels[order[i]];

@@ -8,14 +8,10 @@
 #include <string_view>
 #include <vector>
 
+#include "common/labelled_csv.h"
 #include "common/status.h"
 
 namespace relmap::datasets {
-
-struct LabelledSamples {
-  Eigen::MatrixXd features;  // one sample per row
-  std::vector<int> labels;   // 0 or 1, one per row
-};
 
 enum class Problem { kTwoMoons, kXorBlobs, kConcentricRings };
 

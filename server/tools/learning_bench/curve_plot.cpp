@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "image/line_plot.h"
+#include "common/image/line_plot.h"
 
 namespace relmap::learning_bench {
 

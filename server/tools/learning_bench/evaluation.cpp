@@ -5,7 +5,7 @@
 #include <chrono>
 #include <string>
 
-#include "exploration/metrics.h"
+#include "common/metrics.h"
 
 namespace relmap::learning_bench {
 
@@ -24,7 +24,7 @@ StatusOr<RunResult> RunLearner(OnlineLearner& learner, const Stream& stream, int
     }
     if ((curve_every > 0 && (i + 1) % curve_every == 0) || i + 1 == n) {
       result.curve.push_back(
-          {i + 1, exploration::BalancedAccuracy(learner.Predict(stream.test.features), moveable)});
+          {i + 1, metrics::BalancedAccuracy(learner.Predict(stream.test.features), moveable)});
     }
   }
 
@@ -34,10 +34,10 @@ StatusOr<RunResult> RunLearner(OnlineLearner& learner, const Stream& stream, int
       std::chrono::steady_clock::now() - start;
   result.predict_us = predict.count() / static_cast<double>(std::max<Eigen::Index>(1, p.size()));
 
-  result.balanced_accuracy = exploration::BalancedAccuracy(p, moveable);
-  result.soft_accuracy = exploration::SoftScores(p, moveable).accuracy;
-  result.log_loss = exploration::LogLoss(p, moveable);
-  result.brier = exploration::BrierScore(p, moveable);
+  result.balanced_accuracy = metrics::BalancedAccuracy(p, moveable);
+  result.soft_accuracy = metrics::SoftScores(p, moveable).accuracy;
+  result.log_loss = metrics::LogLoss(p, moveable);
+  result.brier = metrics::BrierScore(p, moveable);
   result.components = learner.Components();
   return result;
 }

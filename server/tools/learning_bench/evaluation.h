@@ -18,7 +18,7 @@ struct CurvePoint {
 };
 
 // Test-set scores after the whole training set (moveable = label 1). Each is
-// undefined where its metric is (exploration/metrics.h).
+// undefined where its metric is (common/metrics.h).
 struct RunResult {
   std::optional<double> balanced_accuracy;
   std::optional<double> soft_accuracy;  // the paper's soft metric

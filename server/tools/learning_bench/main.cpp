@@ -13,7 +13,8 @@
 #include <string_view>
 #include <vector>
 
-#include "datasets/csv.h"
+#include "common/command_line.h"
+#include "common/labelled_csv.h"
 #include "learning_bench/curve_plot.h"
 #include "learning_bench/evaluation.h"
 #include "learning_bench/learners.h"
@@ -23,7 +24,6 @@
 #include "learning_bench/summary.h"
 #include "learning_bench/table_csv.h"
 #include "learning_bench/table_text.h"
-#include "tools/command_line.h"
 
 #ifndef RELMAP_REFERENCE_SCRIPT
 #define RELMAP_REFERENCE_SCRIPT "scripts/bench-learning-reference.py"

@@ -2,7 +2,7 @@
 // reports.
 #include "learning_bench/report_json.h"
 
-#include "json_writer.h"
+#include "common/json_writer.h"
 
 namespace relmap::learning_bench {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <array>
 
-#include "cmm/random.h"
-#include "datasets/csv.h"
+#include "common/labelled_csv.h"
+#include "common/random.h"
 
 namespace relmap::learning_bench {
 namespace {
@@ -34,8 +34,8 @@ enum class SeedUse { kEmbedding, kTrain, kTest, kFlips };
 std::uint64_t DeriveSeed(std::uint64_t seed, int replication, SeedUse use) {
   // One splitmix64-seeded draw per (seed, replication, use): unrelated streams
   // for neighbouring inputs.
-  cmm::Random random(seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(replication) * 4 +
-                     static_cast<std::uint64_t>(use));
+  Random random(seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(replication) * 4 +
+                static_cast<std::uint64_t>(use));
   return random.NextBits();
 }
 

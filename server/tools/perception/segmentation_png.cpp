@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "image/point_raster.h"
+#include "common/image/point_raster.h"
 
 namespace relmap::perception {
 namespace {

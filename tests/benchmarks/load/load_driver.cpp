@@ -9,9 +9,9 @@
 #include <memory>
 #include <optional>
 
+#include "common/random.h"
 #include "outcome_label.h"
 #include "retry.h"
-#include "seeded_random.h"
 
 namespace relmap::load {
 namespace {
@@ -27,7 +27,7 @@ struct SessionLoop {
   enum class Step { kComputeMaps, kPostOutcome };
 
   SessionLoop(std::size_t position, const LoadSession& driven, const v1::Cloud& cloud)
-      : index(position), session(driven), jitter(Mix64(driven.seed)) {
+      : index(position), session(driven), jitter(driven.seed) {
     // The cloud is copied once per session, not once per call.
     maps_request.set_session_id(session.handle.id);
     *maps_request.mutable_cloud() = cloud;
@@ -36,7 +36,7 @@ struct SessionLoop {
 
   const std::size_t index;
   const LoadSession session;
-  SeededRandom jitter;
+  Random jitter;
 
   v1::ComputeMapsRequest maps_request;
   v1::ComputeMapsResponse maps_response;
@@ -167,7 +167,7 @@ class Driver {
     const auto retry_at =
         std::chrono::system_clock::now() +
         std::max(pushback.value_or(std::chrono::milliseconds(0)),
-                 client::BackoffBefore(loop.attempt + 1, plan_.retry, loop.jitter.NextUnit()));
+                 client::BackoffBefore(loop.attempt + 1, plan_.retry, loop.jitter.UniformUnit()));
     if (client::IsRetryable(loop.status, client::Idempotence::kNotIdempotent,
                             pushback.has_value()) &&
         loop.attempt < plan_.retry.max_attempts && retry_at < loop.call_deadline) {

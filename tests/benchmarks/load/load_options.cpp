@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "tools/command_line.h"
+#include "common/command_line.h"
 
 namespace relmap::load {
 namespace {

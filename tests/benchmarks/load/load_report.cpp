@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "json_writer.h"
+#include "common/json_writer.h"
 
 namespace relmap::load {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <map>
 
-#include "seeded_random.h"
+#include "common/random.h"
 
 namespace relmap::load {
 
@@ -26,8 +26,8 @@ std::optional<v1::Label> GroundTruthLabel(const v1::ComputeMapsResponse& maps,
 }
 
 v1::Label CoinLabel(std::uint64_t session_seed, std::uint64_t cycle) {
-  return (Mix64(session_seed ^ Mix64(cycle)) & 1) != 0 ? v1::LABEL_MOVEABLE
-                                                       : v1::LABEL_NOT_MOVEABLE;
+  return (SplitMix64Mix(session_seed ^ SplitMix64Mix(cycle)) & 1) != 0 ? v1::LABEL_MOVEABLE
+                                                                       : v1::LABEL_NOT_MOVEABLE;
 }
 
 }  // namespace relmap::load

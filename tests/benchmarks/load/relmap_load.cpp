@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/random.h"
 #include "load_cloud.h"
 #include "load_driver.h"
 #include "load_options.h"
@@ -17,10 +18,7 @@
 #include "local_server.h"
 #include "process_memory.h"
 #include "relevance_client.h"
-#include "seeded_random.h"
-#ifdef RELMAP_LOAD_SYNTHETIC
 #include "synthetic_cloud.h"
-#endif
 
 namespace relmap::load {
 namespace {
@@ -33,12 +31,7 @@ int Failure(const std::string& message) {
 
 StatusOr<LoadCloud> LoadTheCloud(const LoadOptions& options) {
   if (!options.cloud_path.empty()) return ReadPcdCloud(options.cloud_path);
-#ifdef RELMAP_LOAD_SYNTHETIC
   return MakeSyntheticCloud(options.synthetic_width, options.synthetic_height);
-#else
-  return FailedPreconditionError(
-      "built without RELMAP_WITH_PERCEPTION, so there is no synthetic cloud: pass --cloud FILE");
-#endif
 }
 
 // The server's memory, when its pid is known.
@@ -122,12 +115,12 @@ int Run(const LoadOptions& options) {
   }
 
   report.before = MemoryOf(server_pid);
-  // Session seeds are a SplitMix64 stream from --seed: the same flags create the
+  // Session seeds are a stream of relmap::Random seeded by --seed: the same flags create the
   // same sessions, which then draw the same targets and learn the same labels.
-  SeededRandom seeds(options.seed);
+  Random seeds(options.seed);
   std::vector<LoadSession> sessions(static_cast<std::size_t>(options.sessions));
   for (LoadSession& session : sessions) {
-    session.seed = seeds.Next();
+    session.seed = seeds.NextBits();
     v1::SessionConfig config;
     config.set_seed(session.seed);
     if (const grpc::Status status = client->CreateSession(config, &session.handle); !status.ok()) {

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <numeric>
 
-#include "cmm/random.h"
+#include "common/random.h"
 
 namespace relmap::cmm {
 namespace {

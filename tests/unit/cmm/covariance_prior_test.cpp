@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "cmm/component.h"
-#include "cmm/random.h"
+#include "common/random.h"
 
 namespace relmap::cmm {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "cmm/collaborative_mixture_models.h"
+#include "common/metrics.h"
 #include "datasets/synthetic_problems.h"
-#include "exploration/metrics.h"
 #include "support/cmm_training.h"
 
 namespace relmap::cmm {
@@ -24,7 +24,7 @@ using testing::Train;
 // averaged over the two classes.
 double SoftAccuracy(const CollaborativeMixtureModels& model, const LabelledSamples& test) {
   std::vector<bool> moveable(test.labels.begin(), test.labels.end());
-  return exploration::SoftScores(model.Predict(test.features), moveable).accuracy.value();
+  return metrics::SoftScores(model.Predict(test.features), moveable).accuracy.value();
 }
 
 // Fraction of test samples on the right side of 0.5.
@@ -169,7 +169,7 @@ TEST(Iagmm, NeverSplitsSeparatedClasses) {
   // Two far-apart blobs: no component's tolerance ellipsoid reaches the other class.
   datasets::LabelledSamples data;
   data.features.resize(400, 3);
-  cmm::Random random(2);
+  Random random(2);
   for (int i = 0; i < 400; ++i) {
     const int label = i % 2;
     for (int k = 0; k < 3; ++k) data.features(i, k) = 10.0 * label + random.UniformUnit();

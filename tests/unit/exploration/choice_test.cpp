@@ -73,7 +73,7 @@ TEST(ChoiceMap, PaperQuirksZeroValuesBelowOneThousandth) {
 TEST(DrawTarget, FollowsTheChoiceMap) {
   // 40000 draws from (0.1, 0.6, 0.3, 0): each count within 5 standard deviations.
   const Eigen::Vector4d choice(0.1, 0.6, 0.3, 0.0);
-  cmm::Random random(11);
+  Random random(11);
   std::vector<int> counts(4, 0);
   for (int i = 0; i < 40000; ++i) ++counts[DrawTarget(choice, 100, false, random)];
   EXPECT_NEAR(counts[0], 4000, 5 * std::sqrt(40000 * 0.1 * 0.9));
@@ -84,8 +84,8 @@ TEST(DrawTarget, FollowsTheChoiceMap) {
 
 TEST(DrawTarget, IsReproducibleFromTheSeed) {
   const Eigen::Vector4d choice(0.1, 0.6, 0.3, 0.0);
-  cmm::Random a(5);
-  cmm::Random b(5);
+  Random a(5);
+  Random b(5);
   for (int i = 0; i < 100; ++i)
     EXPECT_EQ(DrawTarget(choice, i, false, a), DrawTarget(choice, i, false, b));
 }
@@ -94,7 +94,7 @@ TEST(DrawTarget, PaperQuirksDrawTheFirstElevenUniformlyButNeverTheLast) {
   // Choice mass all on the last index: the 2018 code still draws uniformly over
   // the others for the first 11 interactions, then follows the map.
   const Eigen::Vector3d choice(0.0, 0.0, 1.0);
-  cmm::Random random(3);
+  Random random(3);
   std::vector<int> counts(3, 0);
   for (int i = 0; i < 2000; ++i)
     ++counts[DrawTarget(choice, i % kPaperUniformChoices, true, random)];

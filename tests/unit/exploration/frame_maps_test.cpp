@@ -21,7 +21,7 @@ Eigen::MatrixXd Grid(int n) {
 
 TEST(FrameMaps, BeforeAnySampleRelevanceIsOneHalfAndChoiceUniform) {
   const auto model = Model2d();
-  cmm::Random random(1);
+  Random random(1);
   const FrameMaps maps = ComputeFrameMaps(model, Grid(8), ExplorationConfig{}, 0, &random);
   EXPECT_TRUE(maps.relevance.isApproxToConstant(0.5, 0.0));
   EXPECT_TRUE(maps.choice.isApproxToConstant(1.0 / 8.0));
@@ -33,7 +33,7 @@ TEST(FrameMaps, ChoiceSumsToOneAndFavoursUncoveredRows) {
   auto model = Model2d();
   ASSERT_TRUE(model.Add(Eigen::Vector2d(0, 0), 0).ok());
   ASSERT_TRUE(model.Add(Eigen::Vector2d(0.1, 0.05), 1).ok());
-  cmm::Random random(2);
+  Random random(2);
   const FrameMaps maps = ComputeFrameMaps(model, Grid(30), ExplorationConfig{}, 2, &random);
   EXPECT_NEAR(maps.choice.sum(), 1.0, 1e-12);
   // Row 0 sits on a sample (c = 1): it is never worth pushing again.
@@ -49,7 +49,7 @@ TEST(FrameMaps, RowsWithNonFiniteFeaturesGetOneHalfAndNoChoice) {
   features(1, 0) = std::numeric_limits<double>::quiet_NaN();
   features(4, 1) = std::numeric_limits<double>::infinity();
   for (std::uint64_t seed = 0; seed < 50; ++seed) {
-    cmm::Random random(seed);
+    Random random(seed);
     const FrameMaps maps = ComputeFrameMaps(model, features, ExplorationConfig{}, 1, &random);
     EXPECT_EQ(maps.unusable_rows, 2);
     EXPECT_DOUBLE_EQ(maps.relevance[1], 0.5);
@@ -63,7 +63,7 @@ TEST(FrameMaps, RowsWithNonFiniteFeaturesGetOneHalfAndNoChoice) {
 
 TEST(FrameMaps, NoUsableRowMeansNoTarget) {
   const auto model = Model2d();
-  cmm::Random random(3);
+  Random random(3);
   const Eigen::MatrixXd features =
       Eigen::MatrixXd::Constant(3, 2, std::numeric_limits<double>::quiet_NaN());
   const FrameMaps maps = ComputeFrameMaps(model, features, ExplorationConfig{}, 0, &random);
@@ -82,8 +82,8 @@ TEST(FrameMaps, WithoutAnRngNoTargetIsDrawn) {
 TEST(FrameMaps, SameSeedSameTargets) {
   auto model = Model2d();
   ASSERT_TRUE(model.Add(Eigen::Vector2d(0.5, 0.2), 1).ok());
-  cmm::Random a(7);
-  cmm::Random b(7);
+  Random a(7);
+  Random b(7);
   for (int i = 0; i < 20; ++i) {
     EXPECT_EQ(ComputeFrameMaps(model, Grid(40), ExplorationConfig{}, i, &a).target,
               ComputeFrameMaps(model, Grid(40), ExplorationConfig{}, i, &b).target);
