@@ -3,9 +3,14 @@
 
 #include <algorithm>
 
+#include "error_reason.h"
+
 namespace relmap::client {
 
 bool IsRetryable(const grpc::Status& status, Idempotence idempotence, bool pushback) {
+  // relmap-server says so: it did nothing, and will do it later or elsewhere.
+  const v1::ErrorReason reason = ReasonOf(status);
+  if (reason == v1::BUSY || reason == v1::SESSION_OWNED_ELSEWHERE) return true;
   // gRPC's own text for a sync server whose ResourceQuota has no thread left
   // (src/cpp/server/server_cc.cc). relmap's own RESOURCE_EXHAUSTED answers
   // (oversized clouds, too many sessions) carry other messages and are final.
@@ -14,8 +19,8 @@ bool IsRetryable(const grpc::Status& status, Idempotence idempotence, bool pushb
       (pushback || status.error_message() == kThreadpoolExhausted)) {
     return true;
   }
-  // UNAVAILABLE with a pushback is a relmap server whose session another server
-  // owns for now (a takeover in progress): the call did nothing either.
+  // A pushback without a reason (gRPC's retry design A6, from a server that sends no
+  // reasons) says the same: the call did nothing, repeat it later.
   return status.error_code() == grpc::StatusCode::UNAVAILABLE &&
          (pushback || idempotence == Idempotence::kIdempotent);
 }
