@@ -8,6 +8,7 @@
 
 #include "cli_commands.h"
 #include "common/command_line.h"
+#include "error_reason.h"
 
 namespace relmap::client {
 
@@ -32,8 +33,12 @@ SessionHandle SessionFrom(const CommandLine& args, std::size_t index) {
 
 int PrintAnswer(const grpc::Status& status, const google::protobuf::Message& answer) {
   if (!status.ok()) {
-    std::fprintf(stderr, "relmap: %s (gRPC status code %d)\n", status.error_message().c_str(),
-                 static_cast<int>(status.error_code()));
+    // The reason too, when there is one: what a script around the CLI decides by.
+    const v1::ErrorReason reason = ReasonOf(status);
+    const std::string reason_text =
+        reason == v1::ERROR_REASON_UNSPECIFIED ? "" : ", reason " + v1::ErrorReason_Name(reason);
+    std::fprintf(stderr, "relmap: %s (gRPC status code %d%s)\n", status.error_message().c_str(),
+                 static_cast<int>(status.error_code()), reason_text.c_str());
     return 1;
   }
   std::string json;

@@ -260,10 +260,7 @@ grpc::Status RelevanceClient::CheckHealth(const std::string& service,
       Idempotence::kIdempotent, {});
 }
 
-bool IsFrameGone(const grpc::Status& status) {
-  return status.error_code() == grpc::StatusCode::FAILED_PRECONDITION &&
-         status.error_message().starts_with("frame ");
-}
+bool IsFrameGone(const grpc::Status& status) { return ReasonOf(status) == v1::FRAME_GONE; }
 
 v1::Cloud PcdCloud(std::string pcd_bytes) {
   v1::Cloud cloud;

@@ -2,7 +2,7 @@
 // share between threads. Session calls are authorised with the session's token; every
 // call has a deadline; calls the server provably did not run, and idempotent calls
 // that met a broken connection, are retried with backoff (retry.h). Errors come back
-// as the server's gRPC status.
+// as the server's gRPC status, whose reason (error_reason.h) is what to decide by.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "client_options.h"
+#include "error_reason.h"
 #include "grpc/health/v1/health.pb.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
 #include "retry.h"
@@ -144,8 +145,7 @@ class RelevanceClient {
 // evicted from the session's cache, or lost with the server that computed it (a
 // restart, or the session taken over by another server: frames live in the memory
 // of the server that made them). Nothing was learned; the caller goes on from new
-// maps. relmap-server's message for it starts with "frame ", its other
-// FAILED_PRECONDITION answers with "session ".
+// maps. The server's reason FRAME_GONE says so (error_reason.h), not its message.
 bool IsFrameGone(const grpc::Status& status);
 
 // A cloud message carrying the bytes of a PCD file.

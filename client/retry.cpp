@@ -3,21 +3,31 @@
 
 #include <algorithm>
 
+#include "error_reason.h"
+
 namespace relmap::client {
 
 bool IsRetryable(const grpc::Status& status, Idempotence idempotence, bool pushback) {
+  // relmap-server says so: it did nothing, and will do it later or elsewhere.
+  const v1::ErrorReason reason = ReasonOf(status);
+  if (reason == v1::BUSY || reason == v1::SESSION_OWNED_ELSEWHERE) return true;
+  // A pushback trailer says the same (gRPC's retry design A6) on the codes that mean
+  // "not now", also from a server that sends no reasons.
+  const grpc::StatusCode code = status.error_code();
+  const bool not_now =
+      code == grpc::StatusCode::RESOURCE_EXHAUSTED || code == grpc::StatusCode::UNAVAILABLE;
+  if (pushback && not_now) return true;
   // gRPC's own text for a sync server whose ResourceQuota has no thread left
-  // (src/cpp/server/server_cc.cc). relmap's own RESOURCE_EXHAUSTED answers
-  // (oversized clouds, too many sessions) carry other messages and are final.
+  // (src/cpp/server/server_cc.cc): no handler ran, so no reason could be given.
+  // relmap's own RESOURCE_EXHAUSTED answers (oversized clouds, too many sessions)
+  // carry other messages and are final.
   constexpr char kThreadpoolExhausted[] = "Server Threadpool Exhausted";
-  if (status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED &&
-      (pushback || status.error_message() == kThreadpoolExhausted)) {
+  if (code == grpc::StatusCode::RESOURCE_EXHAUSTED &&
+      status.error_message() == kThreadpoolExhausted) {
     return true;
   }
-  // UNAVAILABLE with a pushback is a relmap server whose session another server
-  // owns for now (a takeover in progress): the call did nothing either.
-  return status.error_code() == grpc::StatusCode::UNAVAILABLE &&
-         (pushback || idempotence == Idempotence::kIdempotent);
+  // A broken connection: the call may or may not have run.
+  return code == grpc::StatusCode::UNAVAILABLE && idempotence == Idempotence::kIdempotent;
 }
 
 std::optional<std::chrono::milliseconds> PushbackOf(const grpc::ClientContext& context) {

@@ -14,14 +14,15 @@ namespace relmap::client {
 // reads, and writes that carry a request id the server deduplicates on.
 enum class Idempotence { kIdempotent, kNotIdempotent };
 
-// A call may be retried when the server provably did not run it: its worker pool
-// was full (gRPC answers RESOURCE_EXHAUSTED "Server Threadpool Exhausted" before any
-// handler runs), or it answered RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms
-// trailer (`pushback`: relmap-server's frame admission, which turns a call away
-// before doing anything), or UNAVAILABLE with such a trailer (a session another
-// server owns in a shared store, for now). For idempotent calls only, also when the connection
-// failed (UNAVAILABLE) and the call may or may not have run. Every other status is the server's
-// answer and is returned as it is.
+// A call may be retried when the server provably did not run it: relmap-server's
+// reason says so (BUSY: its frame admission turned the call away;
+// SESSION_OWNED_ELSEWHERE: another server owns the session in a shared store, for
+// now; error_reason.h), or its worker pool was full (gRPC answers RESOURCE_EXHAUSTED
+// "Server Threadpool Exhausted" before any handler runs, so that text, gRPC's, carries
+// no reason), or it answered RESOURCE_EXHAUSTED or UNAVAILABLE with a
+// grpc-retry-pushback-ms trailer (`pushback`). For idempotent calls only, also when the
+// connection failed (UNAVAILABLE) and the call may or may not have run. Every other
+// status is the server's answer and is returned as it is.
 bool IsRetryable(const grpc::Status& status, Idempotence idempotence, bool pushback = false);
 
 // The server's grpc-retry-pushback-ms trailer, if `context`'s call ended with one.

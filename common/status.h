@@ -1,8 +1,10 @@
-// relmap's error vocabulary: a Status (code + message) and StatusOr<T>. The codes
-// are gRPC's canonical codes, so the service edge maps them one to one.
+// relmap's error vocabulary: a Status (code + message, and a reason where a client
+// acts on the error) and StatusOr<T>. The codes are gRPC's canonical codes, so the
+// service edge maps them one to one.
 #pragma once
 
 #include <cassert>
+#include <map>
 #include <string>
 #include <utility>
 #include <variant>
@@ -29,19 +31,39 @@ enum class StatusCode {
   kUnauthenticated = 16,
 };
 
+// Why an error happened, for the errors a client acts on; the API sends it as the
+// relmap.v1.ErrorReason of the same name (proto/relmap/v1/error_reason.proto, which
+// says what each means and which metadata it has).
+enum class ErrorReason { kNone, kFrameGone, kSessionOwnedElsewhere, kBusy };
+
 // The outcome of an operation that can fail. Cheap to copy when ok.
 class [[nodiscard]] Status {
  public:
+  using Metadata = std::map<std::string, std::string>;
+
   Status() = default;
   Status(StatusCode code, std::string message) : code_(code), message_(std::move(message)) {}
 
   bool ok() const { return code_ == StatusCode::kOk; }
   StatusCode code() const { return code_; }
   const std::string& message() const { return message_; }
+  ErrorReason reason() const { return reason_; }
+  // Facts about this error for programs, lowerCamelCase keys, as its reason documents.
+  const Metadata& metadata() const { return metadata_; }
+
+  // This error with a reason and its metadata; code and message stay.
+  Status WithReason(ErrorReason reason, Metadata metadata = {}) const {
+    Status status = *this;
+    status.reason_ = reason;
+    status.metadata_ = std::move(metadata);
+    return status;
+  }
 
  private:
   StatusCode code_ = StatusCode::kOk;
   std::string message_;
+  ErrorReason reason_ = ErrorReason::kNone;
+  Metadata metadata_;
 };
 
 inline Status OkStatus() { return {}; }

@@ -91,12 +91,15 @@ std::optional<FrameAdmission::Ticket> RelevanceService::AdmitFrame(
 
 grpc::Status RelevanceService::Busy(grpc::ServerContext& context) const {
   // gRPC's server pushback trailer (retry design A6): the call did nothing, repeat it
-  // after this long. relmap's client reads it; gRPC's own retry policy would too.
-  context.AddTrailingMetadata("grpc-retry-pushback-ms", "100");
-  return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
-                      "busy: " + std::to_string(admission_.running()) + " clouds in progress and " +
-                          std::to_string(admission_.waiting()) +
-                          " waiting (--max-concurrent-frames, --max-queued-frames); retry later");
+  // after this long. relmap's client reads it; gRPC's own retry policy would too. The
+  // reason says the same to clients that read the error details.
+  const std::string retry_after_ms = "100";
+  context.AddTrailingMetadata("grpc-retry-pushback-ms", retry_after_ms);
+  return ToGrpcStatus(
+      ResourceExhaustedError("busy: " + std::to_string(admission_.running()) +
+                             " clouds in progress and " + std::to_string(admission_.waiting()) +
+                             " waiting (--max-concurrent-frames, --max-queued-frames); retry later")
+          .WithReason(ErrorReason::kBusy, {{"retryAfterMs", retry_after_ms}}));
 }
 
 std::string RelevanceService::MetricsText() const {

@@ -87,6 +87,7 @@ class RelevanceService final : public v1::RelevanceService::Service {
   // max_frame_wait_; without one, RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms
   // trailer, the signal that the call did nothing and may be repeated.
   std::optional<FrameAdmission::Ticket> AdmitFrame(const grpc::ServerContext& context);
+  // The answer without a slot: that pushback trailer, and the reason BUSY.
   grpc::Status Busy(grpc::ServerContext& context) const;
 
   const perception::DecodeLimits limits_;

@@ -497,7 +497,10 @@ StatusOr<SessionStore::Ownership> PostgresSessionStore::AcquireOwnership(
     if (!row->owner.empty() && row->owner != owner_id_ && row->lease_live && row->owner_connected) {
       return Status(StatusCode::kUnavailable, "session " + Quoted(session_id) +
                                                   " is owned by server " + Quoted(row->owner) +
-                                                  " (lease until " + row->lease_end + ")");
+                                                  " (lease until " + row->lease_end + ")")
+          .WithReason(ErrorReason::kSessionOwnedElsewhere, {{"sessionId", std::string(session_id)},
+                                                            {"owner", row->owner},
+                                                            {"leaseExpiresAt", row->lease_end}});
     }
     auto taken = c.Execute(
         "UPDATE session_owners SET owner = $2, epoch = nextval('session_owner_epochs'),"

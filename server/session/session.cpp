@@ -93,7 +93,9 @@ StatusOr<std::shared_ptr<const perception::Frame>> Session::FrameForOutcomeLocke
   if (mapped == nullptr) {
     return FailedPreconditionError("frame " + std::to_string(frame_id) + " of session " + id_ +
                                    " is unknown or no longer cached (the cache keeps the last " +
-                                   std::to_string(policy_.frame_cache) + " frames)");
+                                   std::to_string(policy_.frame_cache) + " frames)")
+        .WithReason(ErrorReason::kFrameGone,
+                    {{"sessionId", id_}, {"frameId", std::to_string(frame_id)}});
   }
   const auto& features = mapped->frame->features.values;
   if (supervoxel_id >= features.rows()) {

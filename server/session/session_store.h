@@ -66,7 +66,8 @@ class SessionStore {
   // `held_throughout` true when this server has owned it without interruption
   // since it last acquired it (its copy in memory is current), false when it was
   // taken now (load the session from the store). Another live server owning it →
-  // UNAVAILABLE with the owner in the message; an unknown session → NOT_FOUND from a
+  // UNAVAILABLE with the owner in the message and reason kSessionOwnedElsewhere
+  // (metadata sessionId, owner, leaseExpiresAt); an unknown session → NOT_FOUND from a
   // shared store (the single-server default answers OK and leaves that to LoadSession).
   struct Ownership {
     bool held_throughout = true;

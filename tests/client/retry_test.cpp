@@ -11,12 +11,14 @@
 #include <thread>
 #include <vector>
 
+#include "client/reasoned_status.h"
 #include "relevance_client.h"
 
 namespace relmap::client {
 namespace {
 
 using std::chrono::milliseconds;
+using testing::ReasonedStatus;
 
 const grpc::Status kThreadpoolExhausted(grpc::StatusCode::RESOURCE_EXHAUSTED,
                                         "Server Threadpool Exhausted");
@@ -47,6 +49,21 @@ TEST(IsRetryable, ASessionOwnedElsewhereWithAPushbackIsRetriedForEveryCall) {
   EXPECT_TRUE(IsRetryable(owned, Idempotence::kNotIdempotent, /*pushback=*/true));
 }
 
+TEST(IsRetryable, TheReasonsBusyAndSessionOwnedElsewhereAreRetriedForEveryCall) {
+  // No pushback trailer, and messages that say nothing: the reason decides.
+  EXPECT_TRUE(
+      IsRetryable(ReasonedStatus(grpc::StatusCode::RESOURCE_EXHAUSTED, "cloud too big", "BUSY"),
+                  Idempotence::kNotIdempotent));
+  EXPECT_TRUE(
+      IsRetryable(ReasonedStatus(grpc::StatusCode::UNAVAILABLE, "", "SESSION_OWNED_ELSEWHERE"),
+                  Idempotence::kNotIdempotent));
+}
+
+TEST(IsRetryable, AFrameGoneIsAnAnswer) {
+  EXPECT_FALSE(IsRetryable(ReasonedStatus(grpc::StatusCode::FAILED_PRECONDITION, "", "FRAME_GONE"),
+                           Idempotence::kIdempotent));
+}
+
 TEST(IsRetryable, AnswersAreNeverRetried) {
   for (const auto code :
        {grpc::StatusCode::INVALID_ARGUMENT, grpc::StatusCode::NOT_FOUND,
@@ -56,13 +73,24 @@ TEST(IsRetryable, AnswersAreNeverRetried) {
   }
 }
 
-TEST(IsFrameGone, IsTheServersAnswerForAFrameItNoLongerHasAndNoOther) {
-  EXPECT_TRUE(IsFrameGone(grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
-                                       "frame 17 of session ab is unknown or no longer cached "
-                                       "(the cache keeps the last 8 frames)")));
+TEST(IsFrameGone, IsTheReasonFrameGoneWhateverTheMessage) {
+  EXPECT_TRUE(IsFrameGone(ReasonedStatus(grpc::StatusCode::FAILED_PRECONDITION,
+                                         "frame 17 of session ab is unknown or no longer cached "
+                                         "(the cache keeps the last 8 frames)",
+                                         "FRAME_GONE")));
+  EXPECT_TRUE(IsFrameGone(ReasonedStatus(grpc::StatusCode::FAILED_PRECONDITION,
+                                         "session ab has learned samples already", "FRAME_GONE")));
+}
+
+TEST(IsFrameGone, IsNotTheMessageOfAFrameGoneWithoutTheReason) {
+  EXPECT_FALSE(IsFrameGone(grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
+                                        "frame 17 of session ab is unknown or no longer cached "
+                                        "(the cache keeps the last 8 frames)")));
   EXPECT_FALSE(IsFrameGone(grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
                                         "session ab has learned samples already")));
   EXPECT_FALSE(IsFrameGone(grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, "frame 17 has 3")));
+  EXPECT_FALSE(
+      IsFrameGone(ReasonedStatus(grpc::StatusCode::FAILED_PRECONDITION, "frame 17", "BUSY")));
 }
 
 TEST(BackoffBefore, DoublesFromTheInitialWaitUpToTheCapWithJitterAroundIt) {
@@ -198,6 +226,14 @@ TEST_F(ClientAgainstFlakyServer, WaitsOutTheServersPushbackBeforeRepeating) {
   EXPECT_TRUE(client_->ComputeMaps(session_, v1::Cloud{}, &response).ok());
   EXPECT_EQ(service.calls(), 2);
   EXPECT_GE(std::chrono::steady_clock::now() - start, milliseconds(150));
+}
+
+TEST_F(ClientAgainstFlakyServer, RepeatsWhatTheServerTurnedAwayAsBusyWithoutAPushback) {
+  FlakyService service(2, ReasonedStatus(grpc::StatusCode::RESOURCE_EXHAUSTED, "busy", "BUSY"));
+  Start(&service);
+  v1::ComputeMapsResponse response;
+  EXPECT_TRUE(client_->ComputeMaps(session_, v1::Cloud{}, &response).ok());
+  EXPECT_EQ(service.calls(), 3);
 }
 
 TEST_F(ClientAgainstFlakyServer, ARetriedOutcomeKeepsOneGeneratedRequestId) {

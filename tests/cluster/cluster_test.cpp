@@ -7,7 +7,9 @@
 #include <chrono>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -244,6 +246,36 @@ TEST_F(Cluster, KeepsEachSessionOnOneServerAndSurvivesTheOwnersKill) {
     std::cout << session.handle.id.substr(0, 6) << ": " << session.acknowledged
               << " outcomes learned, " << session.frames_lost << " lost with a move\n";
   }
+}
+
+// A call that reaches the server not owning the session (past the load balancer, or
+// while it routes elsewhere) is turned away with the reason the client library
+// repeats it for, naming the owner, and nothing runs.
+TEST_F(Cluster, TheServerNotOwningASessionSaysWhoDoes) {
+  ExploredSession session;
+  ASSERT_TRUE(client_->CreateSession({}, &session.handle).ok());
+  Cycle(session, seed_++);  // the serving server now holds the session's lease (2 s)
+  ASSERT_FALSE(HasFatalFailure());
+  const int other = 1 - OwnerOf(session);
+  auto stub = v1::RelevanceService::NewStub(
+      grpc::CreateChannel(servers_[other]->Address(), grpc::InsecureChannelCredentials()));
+  grpc::ClientContext context;
+  context.AddMetadata("authorization", "Bearer " + session.handle.token);
+  v1::GetSessionRequest request;
+  request.set_session_id(session.handle.id);
+  v1::GetSessionResponse response;
+  const grpc::Status refused = stub->GetSession(&context, request, &response);
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::UNAVAILABLE) << refused.error_message();
+  EXPECT_EQ(client::ReasonOf(refused), v1::SESSION_OWNED_ELSEWHERE) << refused.error_message();
+  const std::optional<google::rpc::ErrorInfo> info = client::ErrorInfoOf(refused);
+  ASSERT_TRUE(info.has_value());
+  std::map<std::string, std::string> metadata(info->metadata().begin(), info->metadata().end());
+  EXPECT_EQ(metadata["sessionId"], session.handle.id);
+  EXPECT_FALSE(metadata["owner"].empty());
+  EXPECT_NE(refused.error_message().find("server \"" + metadata["owner"] + "\""), std::string::npos)
+      << refused.error_message();
+  EXPECT_FALSE(metadata["leaseExpiresAt"].empty());
+  EXPECT_TRUE(client::PushbackOf(context).has_value());
 }
 
 }  // namespace

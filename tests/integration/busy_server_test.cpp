@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -42,6 +43,12 @@ TEST(BusyServer, TurnsCloudsAwayBeyondItsQueueWithAPushback) {
                  status.error_message().rfind("busy: ", 0) == 0 &&
                  client::PushbackOf(context).has_value()) {
         ++busy;
+        // The reason says it too, with the trailer's wait.
+        EXPECT_EQ(client::ReasonOf(status), v1::BUSY);
+        const std::optional<google::rpc::ErrorInfo> info = client::ErrorInfoOf(status);
+        EXPECT_TRUE(info.has_value() && info->metadata().count("retryAfterMs") == 1 &&
+                    info->metadata().at("retryAfterMs") ==
+                        std::to_string(client::PushbackOf(context)->count()));
       } else {
         ++other;
       }

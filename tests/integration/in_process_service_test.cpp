@@ -11,12 +11,14 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <memory>
 #include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "error_reason.h"
 #include "integration/test_support.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
 #include "service/relevance_service.h"
@@ -427,6 +429,12 @@ TEST_F(Frames, AnEvictedFrameIsAFailedPrecondition) {
   EXPECT_EQ(evicted.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
   EXPECT_THAT(evicted.error_message(), HasSubstr("frame 1 of session " + session.id));
   EXPECT_THAT(evicted.error_message(), HasSubstr("no longer cached"));
+  // What clients decide by: the reason, with the frame in its metadata.
+  EXPECT_EQ(client::ReasonOf(evicted), v1::FRAME_GONE);
+  const std::optional<google::rpc::ErrorInfo> info = client::ErrorInfoOf(evicted);
+  ASSERT_TRUE(info.has_value());
+  EXPECT_EQ(Status::Metadata(info->metadata().begin(), info->metadata().end()),
+            (Status::Metadata{{"sessionId", session.id}, {"frameId", "1"}}));
   EXPECT_TRUE(Post(session, 2, maps[1].target_supervoxel_id(), v1::LABEL_MOVEABLE, "kept").ok());
 }
 
@@ -487,6 +495,7 @@ TEST_F(Outcomes, ASupervoxelIdPastTheLastIsInvalid) {
   EXPECT_EQ(past.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(past.error_message(), HasSubstr("frame 1 has " + std::to_string(count) +
                                               " supervoxels, no id " + std::to_string(count)));
+  EXPECT_EQ(client::ReasonOf(past), v1::ERROR_REASON_UNSPECIFIED);  // not FRAME_GONE
   // The last id is learnable when its features are finite, as every one here is.
   ASSERT_EQ(maps.unusable_supervoxels(), 0u);
   EXPECT_TRUE(Post(session, maps.frame_id(), count - 1, v1::LABEL_MOVEABLE, "last").ok());

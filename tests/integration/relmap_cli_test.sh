@@ -76,6 +76,7 @@ check outcome-still grep -q '"nonMoveableSamples":"1"' <<<"$("$cli" outcome "$se
 check after-cloud-unchanged grep -q '"label":"LABEL_NOT_MOVEABLE"' <<<"$("$cli" outcome "$session" 1 "$target" --after-cloud "$cloud" --request-id r2)"
 check stale-frame-exit-1 test "$(exit_code "$cli" outcome "$session" 99 0 moved)" = 1
 check stale-frame-message grep -q 'code 9' <<<"$("$cli" outcome "$session" 99 0 moved 2>&1)"
+check stale-frame-reason grep -q 'code 9, reason FRAME_GONE)' <<<"$("$cli" outcome "$session" 99 0 moved 2>&1)"
 "$cli" maps "$session" "$cloud" >/dev/null && "$cli" maps "$session" "$cloud" >/dev/null
 check evicted-frame grep -q 'keeps the last 2 frames' <<<"$("$cli" outcome "$session" 1 "$target" moved 2>&1)"
 check bad-outcome-exit-2 test "$(exit_code "$cli" outcome "$session" 1 "$target" maybe)" = 2

@@ -115,4 +115,19 @@ expect_status "wrong token → PermissionDenied" PermissionDenied 7 -plaintext \
 unknown_frame="{\"sessionId\": \"$session\", \"frameId\": \"99\", \"label\": \"LABEL_MOVEABLE\"}"
 expect_status "unknown frame → FailedPrecondition" FailedPrecondition 9 -plaintext \
   -H "$auth" -d "$unknown_frame" "$ADDR" $service/PostOutcome
+
+# The reason a client acts on, in the status's details: a google.rpc.ErrorInfo, whose
+# type the server's reflection serves, printed as grpcurl prints details. An error no
+# client acts on has none.
+frame_gone=$(grpcurl -plaintext -H "$auth" -d "$unknown_frame" "$ADDR" $service/PostOutcome \
+  2>&1 >/dev/null) || true
+for expected in '  Details:' '"@type": "type.googleapis.com/google.rpc.ErrorInfo",' \
+  '"reason": "FRAME_GONE",' '"domain": "relmap.v1",' '"frameId": "99",'; do
+  grep -qF -- "$expected" <<<"$frame_gone" || fail "unknown frame: no '$expected' in: $frame_gone"
+done
+echo "ok   unknown frame → reason FRAME_GONE in the details"
+wrong_token=$(grpcurl -plaintext -H "authorization: Bearer not-the-token" -d "$session_json" \
+  "$ADDR" $service/GetSession 2>&1 >/dev/null) || true
+if grep -qF 'Details:' <<<"$wrong_token"; then fail "wrong token: details in: $wrong_token"; fi
+echo "ok   wrong token → no details"
 echo "grpc_reflection: all checks passed"

@@ -95,6 +95,10 @@ TEST_F(PostgresOwnership, SecondServerIsUnavailableWhileTheFirstIsConnected) {
   EXPECT_TRUE(Contains(refused.message(), "owned by server \"" + a->owner_id() + "\""))
       << refused.message();
   EXPECT_TRUE(Contains(refused.message(), "lease until 20")) << refused.message();
+  EXPECT_EQ(refused.reason(), ErrorReason::kSessionOwnedElsewhere);
+  EXPECT_EQ(refused.metadata().at("sessionId"), "s");
+  EXPECT_EQ(refused.metadata().at("owner"), a->owner_id());
+  EXPECT_TRUE(refused.metadata().at("leaseExpiresAt").starts_with("20")) << refused.message();
   // Refusing took nothing: the first still holds it.
   EXPECT_TRUE(a->AcquireOwnership("s")->held_throughout);
   EXPECT_TRUE(a->AppendSample("s", "r1", x_, 1).ok());

@@ -160,8 +160,8 @@ class Driver {
       return;
     }
     // Only calls the server provably did not run are retried ("Server Threadpool
-    // Exhausted", or a busy answer with a pushback trailer, waited out at least as
-    // long as it asks). Its other RESOURCE_EXHAUSTED answers (a cloud over the point
+    // Exhausted", or a busy answer, reason BUSY with a pushback trailer, waited out at
+    // least as long as it asks). Its other RESOURCE_EXHAUSTED answers (a cloud over the point
     // limit, too many sessions) are final, like every other error.
     const std::optional<std::chrono::milliseconds> pushback = client::PushbackOf(*loop.context);
     const auto retry_at =
