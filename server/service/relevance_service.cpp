@@ -1,14 +1,13 @@
-// The handlers: validation, authorisation, proto <-> session translation.
+// The handlers: authorise, translate the request, call the session layer,
+// translate the answer or its status.
 #include "service/relevance_service.h"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 
 #include "service/call_log.h"
 #include "service/config_mapping.h"
 #include "service/status_mapping.h"
-#include "session/credentials.h"
 
 namespace relmap::service {
 namespace {
@@ -37,7 +36,8 @@ v1::Vector3 ToProto(const Eigen::Vector3f& v) {
   return out;
 }
 
-// Feature vectors of a request as the rows of a matrix; ragged → INVALID_ARGUMENT.
+// Feature vectors of a request as the rows of a matrix; ragged →
+// INVALID_ARGUMENT.
 StatusOr<Eigen::MatrixXd> FeatureRows(
     const google::protobuf::RepeatedPtrField<v1::FeatureVector>& rows) {
   if (rows.empty()) return InvalidArgumentError("the request has no feature vector");
@@ -90,13 +90,15 @@ std::optional<FrameAdmission::Ticket> RelevanceService::AdmitFrame(
 }
 
 grpc::Status RelevanceService::Busy(grpc::ServerContext& context) const {
-  // gRPC's server pushback trailer (retry design A6): the call did nothing, repeat it
-  // after this long. relmap's client reads it; gRPC's own retry policy would too.
+  // gRPC's server pushback trailer (retry design A6): the call did nothing,
+  // repeat it after this long. relmap's client reads it; gRPC's own retry
+  // policy would too.
   context.AddTrailingMetadata("grpc-retry-pushback-ms", "100");
   return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
                       "busy: " + std::to_string(admission_.running()) + " clouds in progress and " +
                           std::to_string(admission_.waiting()) +
-                          " waiting (--max-concurrent-frames, --max-queued-frames); retry later");
+                          " waiting (--max-concurrent-frames, "
+                          "--max-queued-frames); retry later");
 }
 
 std::string RelevanceService::MetricsText() const {
@@ -111,50 +113,11 @@ std::string RelevanceService::MetricsText() const {
 
 StatusOr<std::shared_ptr<session::Session>> RelevanceService::Authorised(
     grpc::ServerContext& context, const std::string& id) const {
-  if (id.empty()) return InvalidArgumentError("session_id is required");
-  const auto& metadata = context.client_metadata();
-  const auto header = metadata.find("authorization");
-  // The scheme's name is case-insensitive (RFC 7235 §2.1): "bearer" is a Bearer token.
-  constexpr std::string_view kBearer = "bearer ";
-  const auto is_bearer = [&](std::string_view value) {
-    return std::equal(kBearer.begin(), kBearer.end(), value.begin(), [](char want, char got) {
-      return want == std::tolower(static_cast<unsigned char>(got));
-    });
-  };
-  if (header == metadata.end() || header->second.size() <= kBearer.size() ||
-      !is_bearer(std::string_view(header->second.data(), kBearer.size()))) {
-    return Status(StatusCode::kUnauthenticated,
-                  "calls on a session need 'authorization: Bearer <session token>' metadata");
-  }
-  auto session = registry_.Find(id);
-  if (!session.ok()) {
-    if (session.status().code() == StatusCode::kUnavailable) {
-      context.AddTrailingMetadata("grpc-retry-pushback-ms", "200");
-    }
-    return session.status();
-  }
-  const std::string_view token(header->second.data() + kBearer.size(),
-                               header->second.size() - kBearer.size());
-  if (!session::TokenMatches(token, (*session)->token_hash())) {
-    return Status(StatusCode::kPermissionDenied, "wrong token for session '" + id + "'");
+  auto session = authorization_.SessionFor(CredentialsOf(context), id);
+  if (!session.ok() && session.status().code() == StatusCode::kUnavailable) {
+    context.AddTrailingMetadata("grpc-retry-pushback-ms", "200");
   }
   return session;
-}
-
-Status RelevanceService::AdminAuthorised(const grpc::ServerContext& context) const {
-  if (admin_key_hash_.empty()) return OkStatus();
-  const auto& metadata = context.client_metadata();
-  const auto header = metadata.find("x-relmap-admin-key");
-  if (header == metadata.end()) {
-    return Status(StatusCode::kUnauthenticated,
-                  "this server needs 'x-relmap-admin-key' metadata to create, list, delete or "
-                  "import sessions");
-  }
-  if (!session::TokenMatches(std::string_view(header->second.data(), header->second.size()),
-                             admin_key_hash_)) {
-    return Status(StatusCode::kPermissionDenied, "wrong admin key");
-  }
-  return OkStatus();
 }
 
 grpc::Status RelevanceService::CreateSession(grpc::ServerContext* context,
@@ -162,10 +125,13 @@ grpc::Status RelevanceService::CreateSession(grpc::ServerContext* context,
                                              v1::CreateSessionResponse* response) {
   std::string id;
   return Logged(metrics_, "CreateSession", id, [&] {
-    if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
+    if (Status admin = authorization_.Admin(CredentialsOf(*context)); !admin.ok()) {
+      return ToGrpcStatus(admin);
+    }
     auto settings = SettingsFromProto(request->config());
     if (!settings.ok()) return ToGrpcStatus(settings.status());
-    // The store keeps the filled-in config, from which a restart rebuilds the settings.
+    // The store keeps the filled-in config, from which a restart rebuilds the
+    // settings.
     const std::string config_blob = ProtoFromSettings(*settings).SerializeAsString();
     auto created = registry_.Create(std::move(settings).value(), config_blob, NowUnixMs());
     if (!created.ok()) return ToGrpcStatus(created.status());
@@ -195,7 +161,9 @@ grpc::Status RelevanceService::ListSessions(grpc::ServerContext* context,
                                             const v1::ListSessionsRequest* request,
                                             v1::ListSessionsResponse* response) {
   return Logged(metrics_, "ListSessions", "", [&] {
-    if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
+    if (Status admin = authorization_.Admin(CredentialsOf(*context)); !admin.ok()) {
+      return ToGrpcStatus(admin);
+    }
     constexpr std::uint32_t kDefaultPageSize = 100, kMaxPageSize = 1000;
     if (request->page_size() > kMaxPageSize) {
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
@@ -220,12 +188,9 @@ grpc::Status RelevanceService::DeleteSession(grpc::ServerContext* context,
                                              const v1::DeleteSessionRequest* request,
                                              v1::DeleteSessionResponse*) {
   return Logged(metrics_, "DeleteSession", request->session_id(), [&] {
-    // With an admin key the administrator deletes any session; without one, the
-    // session's own token is needed.
-    if (!admin_key_hash_.empty()) {
-      if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
-    } else if (auto session = Authorised(*context, request->session_id()); !session.ok()) {
-      return ToGrpcStatus(session.status());
+    if (Status allowed = authorization_.Deletion(CredentialsOf(*context), request->session_id());
+        !allowed.ok()) {
+      return ToGrpcStatus(allowed);
     }
     return ToGrpcStatus(registry_.Delete(request->session_id()));
   });
@@ -293,7 +258,8 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
     StatusOr<session::Outcome> outcome = InvalidArgumentError(
-        "the outcome needs a label (LABEL_MOVEABLE or LABEL_NOT_MOVEABLE) or an after_cloud");
+        "the outcome needs a label (LABEL_MOVEABLE or "
+        "LABEL_NOT_MOVEABLE) or an after_cloud");
     if (request->has_after_cloud()) {
       const std::optional<FrameAdmission::Ticket> admitted = AdmitFrame(*context);
       if (!admitted) return Busy(*context);
@@ -382,7 +348,9 @@ grpc::Status RelevanceService::ImportSession(grpc::ServerContext* context,
                                              v1::ImportSessionResponse* response) {
   std::string id;
   return Logged(metrics_, "ImportSession", id, [&] {
-    if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
+    if (Status admin = authorization_.Admin(CredentialsOf(*context)); !admin.ok()) {
+      return ToGrpcStatus(admin);
+    }
     const v1::SessionState& in = request->state();
     if (in.target_rng_state_size() != 4) {
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,

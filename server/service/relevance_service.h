@@ -1,5 +1,6 @@
-// The gRPC handlers of relevance.v1.RelevanceService: each translates the request,
-// checks the session token, delegates to the session layer and translates back.
+// The gRPC handlers of relevance.v1.RelevanceService: each translates the
+// request, checks the session token, delegates to the session layer and
+// translates back.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -11,6 +12,7 @@
 
 #include "perception/perception_config.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
+#include "service/authorization.h"
 #include "service/frame_admission.h"
 #include "service/metrics.h"
 #include "session/session_registry.h"
@@ -22,8 +24,8 @@ struct ServiceLimits {
   perception::DecodeLimits decode;
   // Feature vectors in one ClassifyFeatures, AddSamples or ImportSession.
   std::size_t max_features_per_request = 100000;
-  // Calls that process a cloud (frame_admission.h): running at once, waiting, and
-  // the longest wait before RESOURCE_EXHAUSTED.
+  // Calls that process a cloud (frame_admission.h): running at once, waiting,
+  // and the longest wait before RESOURCE_EXHAUSTED.
   std::size_t concurrent_frames = 2;
   std::size_t queued_frames = 4;
   std::chrono::milliseconds max_frame_wait{10000};
@@ -40,7 +42,7 @@ class RelevanceService final : public v1::RelevanceService::Service {
         max_features_per_request_(limits.max_features_per_request),
         max_frame_wait_(limits.max_frame_wait),
         admission_(limits.concurrent_frames, limits.queued_frames),
-        admin_key_hash_(std::move(admin_key_hash)) {}
+        authorization_(registry, std::move(admin_key_hash)) {}
 
   grpc::Status CreateSession(grpc::ServerContext* context, const v1::CreateSessionRequest* request,
                              v1::CreateSessionResponse* response) override;
@@ -59,7 +61,8 @@ class RelevanceService final : public v1::RelevanceService::Service {
                                 v1::ClassifyFeaturesResponse* response) override;
   grpc::Status AddSamples(grpc::ServerContext* context, const v1::AddSamplesRequest* request,
                           v1::AddSamplesResponse* response) override;
-  // Per-RPC counters and latencies, sessions and samples, in Prometheus's text format.
+  // Per-RPC counters and latencies, sessions and samples, in Prometheus's text
+  // format.
   std::string MetricsText() const;
 
   grpc::Status ExportSession(grpc::ServerContext* context, const v1::ExportSessionRequest* request,
@@ -68,24 +71,20 @@ class RelevanceService final : public v1::RelevanceService::Service {
                              v1::ImportSessionResponse* response) override;
 
  private:
-  // The session `id`, if the call's `authorization: Bearer <token>` matches it:
-  // UNAUTHENTICATED without a bearer token, PERMISSION_DENIED with a wrong one,
-  // NOT_FOUND for an unknown session. UNAVAILABLE while another server owns the
-  // session in a shared store, with a grpc-retry-pushback-ms trailer: nothing ran,
-  // and the session is free once that server lets it go or dies.
+  // Authorization::SessionFor; UNAVAILABLE (another server owns the session in
+  // a shared store) gets a grpc-retry-pushback-ms trailer: nothing ran, and the
+  // session is free once that server lets it go or dies.
   StatusOr<std::shared_ptr<session::Session>> Authorised(grpc::ServerContext& context,
                                                          const std::string& id) const;
 
-  // OK when no admin key is configured or the call's `x-relmap-admin-key`
-  // matches; UNAUTHENTICATED without one, PERMISSION_DENIED with a wrong one.
-  Status AdminAuthorised(const grpc::ServerContext& context) const;
-
   session::SessionRegistry& registry_;
-  // RESOURCE_EXHAUSTED when a request carries more feature vectors than allowed.
+  // RESOURCE_EXHAUSTED when a request carries more feature vectors than
+  // allowed.
   Status CheckFeatureCount(int count) const;
   // A slot to process a cloud in, waiting at most until the call's deadline or
-  // max_frame_wait_; without one, RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms
-  // trailer, the signal that the call did nothing and may be repeated.
+  // max_frame_wait_; without one, RESOURCE_EXHAUSTED with a
+  // grpc-retry-pushback-ms trailer, the signal that the call did nothing and
+  // may be repeated.
   std::optional<FrameAdmission::Ticket> AdmitFrame(const grpc::ServerContext& context);
   grpc::Status Busy(grpc::ServerContext& context) const;
 
@@ -93,7 +92,7 @@ class RelevanceService final : public v1::RelevanceService::Service {
   const std::size_t max_features_per_request_;
   const std::chrono::milliseconds max_frame_wait_;
   FrameAdmission admission_;
-  const std::string admin_key_hash_;
+  const Authorization authorization_;
   Metrics metrics_;
 };
 
