@@ -3,8 +3,8 @@
 
 #include "common/status.h"
 #include "perception/change_detector.h"
-#include "perception/cloud.h"
 #include "relmap/v1/relevance_service.pb.h"
+#include "session/frame_intake.h"
 #include "session/session.h"
 #include "session/session_settings.h"
 
@@ -26,8 +26,7 @@ void FillStats(const session::SessionStats& stats, v1::SessionStats* out);
 
 void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence* out);
 
-// The decoded cloud of a request: PCD bytes or the packed layout, validated.
-StatusOr<perception::Cloud> CloudFromProto(const v1::Cloud& cloud,
-                                           const perception::DecodeLimits& limits);
+// A request's cloud as session::FrameIntake takes it; the bytes stay `cloud`'s.
+session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud);
 
 }  // namespace relmap::service

@@ -83,22 +83,13 @@ Status RelevanceService::CheckFeatureCount(int count) const {
                                 std::to_string(max_features_per_request_) + " per request");
 }
 
-std::optional<FrameAdmission::Ticket> RelevanceService::AdmitFrame(
-    const grpc::ServerContext& context) {
-  return admission_.Enter(
-      std::min(context.deadline(), std::chrono::system_clock::now() + max_frame_wait_));
-}
-
-grpc::Status RelevanceService::Busy(grpc::ServerContext& context) const {
-  // gRPC's server pushback trailer (retry design A6): the call did nothing,
-  // repeat it after this long. relmap's client reads it; gRPC's own retry
-  // policy would too.
-  context.AddTrailingMetadata("grpc-retry-pushback-ms", "100");
-  return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
-                      "busy: " + std::to_string(admission_.running()) + " clouds in progress and " +
-                          std::to_string(admission_.waiting()) +
-                          " waiting (--max-concurrent-frames, "
-                          "--max-queued-frames); retry later");
+StatusOr<session::AdmittedCloud> RelevanceService::TakeCloud(grpc::ServerContext& context,
+                                                             const v1::Cloud& cloud) {
+  session::FrameIntake::Taken taken = intake_.Take(EncodedCloudOf(cloud), context.deadline());
+  // gRPC's server pushback trailer (retry design A6): the call did nothing, repeat it
+  // after this long. relmap's client reads it; gRPC's own retry policy would too.
+  if (taken.busy) context.AddTrailingMetadata("grpc-retry-pushback-ms", "100");
+  return std::move(taken.cloud);
 }
 
 std::string RelevanceService::MetricsText() const {
@@ -203,17 +194,14 @@ grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
     const auto start = std::chrono::steady_clock::now();
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    const std::optional<FrameAdmission::Ticket> admitted = AdmitFrame(*context);
-    if (!admitted) return Busy(*context);
-    const auto admitted_at = std::chrono::steady_clock::now();
-    auto cloud = CloudFromProto(request->cloud(), limits_);
+    auto cloud = TakeCloud(*context, request->cloud());
     if (!cloud.ok()) return ToGrpcStatus(cloud.status());
     const auto milliseconds = [](auto from, auto to) {
       return std::chrono::duration<double, std::milli>(to - from).count();
     };
-    const double admission_ms = milliseconds(start, admitted_at);
-    const double decode_ms = milliseconds(admitted_at, std::chrono::steady_clock::now());
-    auto mapped = (*session)->ComputeMaps(std::move(cloud).value(), NowUnixMs());
+    const double admission_ms = milliseconds(start, cloud->admitted_at);
+    const double decode_ms = milliseconds(cloud->admitted_at, cloud->decoded_at);
+    auto mapped = (*session)->ComputeMaps(std::move(cloud->cloud), NowUnixMs());
     if (!mapped.ok()) return ToGrpcStatus(mapped.status());
 
     const perception::Frame& frame = *mapped->frame;
@@ -261,12 +249,10 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
         "the outcome needs a label (LABEL_MOVEABLE or "
         "LABEL_NOT_MOVEABLE) or an after_cloud");
     if (request->has_after_cloud()) {
-      const std::optional<FrameAdmission::Ticket> admitted = AdmitFrame(*context);
-      if (!admitted) return Busy(*context);
-      auto after = CloudFromProto(request->after_cloud(), limits_);
+      auto after = TakeCloud(*context, request->after_cloud());
       if (!after.ok()) return ToGrpcStatus(after.status());
       outcome = (*session)->PostOutcomeFromCloud(request->frame_id(), request->supervoxel_id(),
-                                                 std::move(after).value(), request->request_id(),
+                                                 std::move(after->cloud), request->request_id(),
                                                  NowUnixMs());
     } else if (const int label = ClassOf(request->label()); label >= 0) {
       outcome = (*session)->PostOutcome(request->frame_id(), request->supervoxel_id(), label,

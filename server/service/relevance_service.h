@@ -13,8 +13,8 @@
 #include "perception/perception_config.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
 #include "service/authorization.h"
-#include "service/frame_admission.h"
 #include "service/metrics.h"
+#include "session/frame_intake.h"
 #include "session/session_registry.h"
 
 namespace relmap::service {
@@ -38,10 +38,11 @@ class RelevanceService final : public v1::RelevanceService::Service {
   RelevanceService(session::SessionRegistry& registry, const ServiceLimits& limits,
                    std::string admin_key_hash = {})
       : registry_(registry),
-        limits_(limits.decode),
         max_features_per_request_(limits.max_features_per_request),
-        max_frame_wait_(limits.max_frame_wait),
-        admission_(limits.concurrent_frames, limits.queued_frames),
+        intake_({.decode = limits.decode,
+                 .concurrent = limits.concurrent_frames,
+                 .queued = limits.queued_frames,
+                 .max_wait = limits.max_frame_wait}),
         authorization_(registry, std::move(admin_key_hash)) {}
 
   grpc::Status CreateSession(grpc::ServerContext* context, const v1::CreateSessionRequest* request,
@@ -81,17 +82,14 @@ class RelevanceService final : public v1::RelevanceService::Service {
   // RESOURCE_EXHAUSTED when a request carries more feature vectors than
   // allowed.
   Status CheckFeatureCount(int count) const;
-  // A slot to process a cloud in, waiting at most until the call's deadline or
-  // max_frame_wait_; without one, RESOURCE_EXHAUSTED with a
-  // grpc-retry-pushback-ms trailer, the signal that the call did nothing and
-  // may be repeated.
-  std::optional<FrameAdmission::Ticket> AdmitFrame(const grpc::ServerContext& context);
-  grpc::Status Busy(grpc::ServerContext& context) const;
+  // A decoded cloud and its processing slot (session::FrameIntake), waiting at
+  // most until the call's deadline. A busy server's RESOURCE_EXHAUSTED gets a
+  // grpc-retry-pushback-ms trailer, the signal that the call did nothing and may
+  // be repeated.
+  StatusOr<session::AdmittedCloud> TakeCloud(grpc::ServerContext& context, const v1::Cloud& cloud);
 
-  const perception::DecodeLimits limits_;
   const std::size_t max_features_per_request_;
-  const std::chrono::milliseconds max_frame_wait_;
-  FrameAdmission admission_;
+  session::FrameIntake intake_;
   const Authorization authorization_;
   Metrics metrics_;
 };
