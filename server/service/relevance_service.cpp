@@ -8,6 +8,7 @@
 #include "service/call_log.h"
 #include "service/config_mapping.h"
 #include "service/status_mapping.h"
+#include "session/session_listing.h"
 
 namespace relmap::service {
 namespace {
@@ -155,17 +156,10 @@ grpc::Status RelevanceService::ListSessions(grpc::ServerContext* context,
     if (Status admin = authorization_.Admin(CredentialsOf(*context)); !admin.ok()) {
       return ToGrpcStatus(admin);
     }
-    constexpr std::uint32_t kDefaultPageSize = 100, kMaxPageSize = 1000;
-    if (request->page_size() > kMaxPageSize) {
-      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                          "page_size is at most " + std::to_string(kMaxPageSize) + ", got " +
-                              std::to_string(request->page_size()));
-    }
-    const std::uint32_t page_size =
-        request->page_size() == 0 ? kDefaultPageSize : request->page_size();
-    const session::SessionRegistry::Page page = registry_.List(request->page_token(), page_size);
-    if (page.more) response->set_next_page_token(page.sessions.back()->id());
-    for (const auto& session : page.sessions) {
+    auto page = session::ListSessionPage(registry_, request->page_token(), request->page_size());
+    if (!page.ok()) return ToGrpcStatus(page.status());
+    response->set_next_page_token(page->next_page_token);
+    for (const auto& session : page->sessions) {
       v1::GetSessionResponse* entry = response->add_sessions();
       entry->set_session_id(session->id());
       *entry->mutable_config() = ProtoFromSettings(session->settings());
