@@ -26,9 +26,9 @@
 
 #include "grpc/health/v1/health.pb.h"
 #include "server_options.h"
+#include "service/config_mapping.h"
 #include "service/metrics_http.h"
 #include "service/relevance_service.h"
-#include "service/session_restore.h"
 #include "session/credentials.h"
 #include "session/session_registry.h"
 #include "store_opening.h"
@@ -74,14 +74,12 @@ int main(int argc, char** argv) {
   } else {
     spdlog::warn("no --store or --data-dir: sessions live in memory only and are lost at exit");
   }
-  relmap::session::SessionRegistry registry(options.max_sessions, store.get());
+  // Stored sessions come back into memory on their first call; their stored settings
+  // are the API's SessionConfig, which the service reads.
+  relmap::session::SessionRegistry registry(options.max_sessions, store.get(),
+                                            relmap::service::SettingsOfStoredSession);
   registry.set_policy(
       {.snapshot_every = options.snapshot_every, .frame_cache = options.frames_per_session});
-  if (store) {
-    // Stored sessions come back into memory on their first call.
-    registry.set_loader(
-        [&store](const std::string& id) { return relmap::service::LoadStoredSession(*store, id); });
-  }
   relmap::service::ServiceLimits limits;
   limits.decode.max_points = options.max_points;
   limits.decode.max_bytes = static_cast<long long>(options.max_message_mb) << 20;

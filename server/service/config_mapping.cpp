@@ -260,4 +260,12 @@ session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud) {
   return encoded;
 }
 
+StatusOr<session::SessionSettings> SettingsOfStoredSession(const session::SessionRecord& record) {
+  v1::SessionConfig config;
+  if (!config.ParseFromString(record.config)) {
+    return DataLossError("session " + record.id + ": its stored configuration does not parse");
+  }
+  return SettingsFromProto(config);
+}
+
 }  // namespace relmap::service

@@ -6,6 +6,7 @@
 #include "relmap/v1/relevance_service.pb.h"
 #include "session/frame_intake.h"
 #include "session/session.h"
+#include "session/session_record.h"
 #include "session/session_settings.h"
 
 namespace relmap::service {
@@ -28,5 +29,9 @@ void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence
 
 // A request's cloud as session::FrameIntake takes it; the bytes stay `cloud`'s.
 session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud);
+
+// The settings of a stored session, from the SessionConfig that CreateSession
+// stored (session::StoredSettingsDecoder); DATA_LOSS when it does not parse.
+StatusOr<session::SessionSettings> SettingsOfStoredSession(const session::SessionRecord& record);
 
 }  // namespace relmap::service

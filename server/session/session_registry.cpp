@@ -9,6 +9,16 @@
 
 namespace relmap::session {
 
+SessionRegistry::SessionRegistry(std::size_t max_sessions, SessionStore* store,
+                                 StoredSettingsDecoder decode_settings)
+    : max_sessions_(max_sessions), store_(store) {
+  if (store_ != nullptr && decode_settings) {
+    loader_ = [store, decode = std::move(decode_settings)](const std::string& id) {
+      return LoadStoredSession(*store, id, decode);
+    };
+  }
+}
+
 StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings settings,
                                                            std::string config_blob,
                                                            std::int64_t now_unix_ms) {
