@@ -260,6 +260,10 @@ session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud) {
   return encoded;
 }
 
+std::string StoredConfigOf(const session::SessionSettings& settings) {
+  return ProtoFromSettings(settings).SerializeAsString();
+}
+
 StatusOr<session::SessionSettings> SettingsOfStoredSession(const session::SessionRecord& record) {
   v1::SessionConfig config;
   if (!config.ParseFromString(record.config)) {

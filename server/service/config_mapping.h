@@ -1,6 +1,8 @@
 // Translation between the API's messages and the session layer's types.
 #pragma once
 
+#include <string>
+
 #include "common/status.h"
 #include "perception/change_detector.h"
 #include "relmap/v1/relevance_service.pb.h"
@@ -29,6 +31,10 @@ void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence
 
 // A request's cloud as session::FrameIntake takes it; the bytes stay `cloud`'s.
 session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud);
+
+// What the store keeps of `settings` (SessionRegistry::Create's config blob): their
+// SessionConfig, every default filled in, serialised.
+std::string StoredConfigOf(const session::SessionSettings& settings);
 
 // The settings of a stored session, from the SessionConfig that CreateSession
 // stored (session::StoredSettingsDecoder); DATA_LOSS when it does not parse.

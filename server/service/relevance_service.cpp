@@ -1,12 +1,12 @@
-// The handlers: authorise, translate the request, call the session layer,
-// translate the answer or its status.
+// The handlers: authorise, translate the request, call the session layer, translate
+// the answer or its status.
 #include "service/relevance_service.h"
 
-#include <algorithm>
 #include <chrono>
 
 #include "service/call_log.h"
 #include "service/config_mapping.h"
+#include "service/payload_mapping.h"
 #include "service/status_mapping.h"
 #include "session/session_listing.h"
 
@@ -19,70 +19,7 @@ std::int64_t NowUnixMs() {
       .count();
 }
 
-// The label of the API as the classifier's 0/1; -1 if unset.
-int ClassOf(v1::Label label) {
-  switch (label) {
-    case v1::LABEL_MOVEABLE:
-      return 1;
-    case v1::LABEL_NOT_MOVEABLE:
-      return 0;
-    default:
-      return -1;
-  }
-}
-
-v1::Vector3 ToProto(const Eigen::Vector3f& v) {
-  v1::Vector3 out;
-  out.set_x(v.x()), out.set_y(v.y()), out.set_z(v.z());
-  return out;
-}
-
-// Feature vectors of a request as the rows of a matrix; ragged →
-// INVALID_ARGUMENT.
-StatusOr<Eigen::MatrixXd> FeatureRows(
-    const google::protobuf::RepeatedPtrField<v1::FeatureVector>& rows) {
-  if (rows.empty()) return InvalidArgumentError("the request has no feature vector");
-  const int p = rows[0].values_size();
-  Eigen::MatrixXd matrix(rows.size(), p);
-  for (int i = 0; i < rows.size(); ++i) {
-    if (rows[i].values_size() != p) {
-      return InvalidArgumentError("feature vector " + std::to_string(i) + " has " +
-                                  std::to_string(rows[i].values_size()) + " values, vector 0 has " +
-                                  std::to_string(p));
-    }
-    for (int k = 0; k < p; ++k) matrix(i, k) = rows[i].values(k);
-  }
-  return matrix;
-}
-
-struct LabelledRows {
-  Eigen::MatrixXd features;
-  std::vector<int> labels;  // -1 where the label is unset
-};
-
-// Labelled feature vectors of a request; ragged → INVALID_ARGUMENT.
-StatusOr<LabelledRows> LabelledRowsOf(
-    const google::protobuf::RepeatedPtrField<v1::LabelledFeature>& samples) {
-  google::protobuf::RepeatedPtrField<v1::FeatureVector> vectors;
-  LabelledRows rows;
-  for (const v1::LabelledFeature& sample : samples) {
-    *vectors.Add() = sample.feature();
-    rows.labels.push_back(ClassOf(sample.label()));
-  }
-  auto features = FeatureRows(vectors);
-  if (!features.ok()) return features.status();
-  rows.features = std::move(features).value();
-  return rows;
-}
-
 }  // namespace
-
-Status RelevanceService::CheckFeatureCount(int count) const {
-  if (static_cast<std::size_t>(count) <= max_features_per_request_) return OkStatus();
-  return ResourceExhaustedError("the request carries " + std::to_string(count) +
-                                " feature vectors; this server takes at most " +
-                                std::to_string(max_features_per_request_) + " per request");
-}
 
 StatusOr<session::AdmittedCloud> RelevanceService::TakeCloud(grpc::ServerContext& context,
                                                              const v1::Cloud& cloud) {
@@ -122,9 +59,8 @@ grpc::Status RelevanceService::CreateSession(grpc::ServerContext* context,
     }
     auto settings = SettingsFromProto(request->config());
     if (!settings.ok()) return ToGrpcStatus(settings.status());
-    // The store keeps the filled-in config, from which a restart rebuilds the
-    // settings.
-    const std::string config_blob = ProtoFromSettings(*settings).SerializeAsString();
+    // The store keeps the filled-in config, from which a restart rebuilds the settings.
+    const std::string config_blob = StoredConfigOf(*settings);
     auto created = registry_.Create(std::move(settings).value(), config_blob, NowUnixMs());
     if (!created.ok()) return ToGrpcStatus(created.status());
     id = created->session->id();
@@ -198,36 +134,10 @@ grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
     auto mapped = (*session)->ComputeMaps(std::move(cloud->cloud), NowUnixMs());
     if (!mapped.ok()) return ToGrpcStatus(mapped.status());
 
-    const perception::Frame& frame = *mapped->frame;
-    const exploration::FrameMaps& maps = mapped->maps;
-    response->set_frame_id(mapped->frame_id);
-    for (const perception::Supervoxel& sv : frame.segmentation.supervoxels) {
-      v1::Supervoxel* out = response->add_supervoxels();
-      out->set_id(sv.id);
-      *out->mutable_centroid() = ToProto(sv.centroid);
-      *out->mutable_normal() = ToProto(sv.normal);
-      out->set_point_count(static_cast<std::uint32_t>(sv.point_indices.size()));
-      out->set_relevance(maps.relevance[sv.id]);
-      out->set_choice(maps.choice[sv.id]);
-      if (request->include_features()) {
-        const auto row = frame.features.values.row(sv.id);
-        out->mutable_features()->Add(row.begin(), row.end());
-      }
-    }
-    if (maps.target >= 0)
-      response->set_target_supervoxel_id(static_cast<std::uint32_t>(maps.target));
-    if (!request->omit_point_labels()) {
-      response->mutable_point_labels()->Add(frame.segmentation.point_labels.begin(),
-                                            frame.segmentation.point_labels.end());
-    }
-    response->set_unusable_supervoxels(static_cast<std::uint32_t>(maps.unusable_rows));
+    FillMappedFrame(*mapped, request->include_features(), request->omit_point_labels(), response);
     v1::StageTimings* timings = response->mutable_timings();
     timings->set_admission_ms(admission_ms);
     timings->set_decode_ms(decode_ms);
-    timings->set_filter_ms(frame.timings.filter_ms);
-    timings->set_supervoxels_ms(frame.timings.supervoxels_ms);
-    timings->set_features_ms(frame.timings.features_ms);
-    timings->set_maps_ms(mapped->maps_ms);
     timings->set_total_ms(milliseconds(start, std::chrono::steady_clock::now()));
     return grpc::Status::OK;
   });
@@ -240,8 +150,7 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
     StatusOr<session::Outcome> outcome = InvalidArgumentError(
-        "the outcome needs a label (LABEL_MOVEABLE or "
-        "LABEL_NOT_MOVEABLE) or an after_cloud");
+        "the outcome needs a label (LABEL_MOVEABLE or LABEL_NOT_MOVEABLE) or an after_cloud");
     if (request->has_after_cloud()) {
       auto after = TakeCloud(*context, request->after_cloud());
       if (!after.ok()) return ToGrpcStatus(after.status());
@@ -253,7 +162,7 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
                                         request->request_id(), NowUnixMs());
     }
     if (!outcome.ok()) return ToGrpcStatus(outcome.status());
-    response->set_label(outcome->label == 1 ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE);
+    response->set_label(LabelOf(outcome->label));
     FillStats(outcome->stats, response->mutable_stats());
     if (outcome->evidence) FillEvidence(*outcome->evidence, response->mutable_evidence());
     return grpc::Status::OK;
@@ -266,7 +175,8 @@ grpc::Status RelevanceService::ClassifyFeatures(grpc::ServerContext* context,
   return Logged(metrics_, "ClassifyFeatures", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    if (Status limit = CheckFeatureCount(request->features_size()); !limit.ok()) {
+    if (Status limit = CheckFeatureCount(request->features_size(), max_features_per_request_);
+        !limit.ok()) {
       return ToGrpcStatus(limit);
     }
     auto rows = FeatureRows(request->features());
@@ -286,7 +196,8 @@ grpc::Status RelevanceService::AddSamples(grpc::ServerContext* context,
   return Logged(metrics_, "AddSamples", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    if (Status limit = CheckFeatureCount(request->samples_size()); !limit.ok()) {
+    if (Status limit = CheckFeatureCount(request->samples_size(), max_features_per_request_);
+        !limit.ok()) {
       return ToGrpcStatus(limit);
     }
     auto rows = LabelledRowsOf(request->samples());
@@ -305,19 +216,8 @@ grpc::Status RelevanceService::ExportSession(grpc::ServerContext* context,
   return Logged(metrics_, "ExportSession", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    const session::SessionState state = (*session)->ExportState();
-    v1::SessionState* out = response->mutable_state();
-    *out->mutable_config() = ProtoFromSettings((*session)->settings());
-    for (Eigen::Index i = 0; i < state.features.rows(); ++i) {
-      v1::LabelledFeature* sample = out->add_samples();
-      for (Eigen::Index k = 0; k < state.features.cols(); ++k) {
-        sample->mutable_feature()->add_values(state.features(i, k));
-      }
-      sample->set_label(state.labels[static_cast<std::size_t>(i)] == 1 ? v1::LABEL_MOVEABLE
-                                                                       : v1::LABEL_NOT_MOVEABLE);
-    }
-    out->mutable_target_rng_state()->Add(state.target_random.begin(), state.target_random.end());
-    out->set_interactions(state.interactions);
+    *response->mutable_state()->mutable_config() = ProtoFromSettings((*session)->settings());
+    FillState((*session)->ExportState(), response->mutable_state());
     FillStats((*session)->Stats(), response->mutable_stats());
     return grpc::Status::OK;
   });
@@ -331,38 +231,17 @@ grpc::Status RelevanceService::ImportSession(grpc::ServerContext* context,
     if (Status admin = authorization_.Admin(CredentialsOf(*context)); !admin.ok()) {
       return ToGrpcStatus(admin);
     }
-    const v1::SessionState& in = request->state();
-    if (in.target_rng_state_size() != 4) {
-      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                          "state.target_rng_state must hold the 4 words of the RNG");
-    }
-    if (Status limit = CheckFeatureCount(in.samples_size()); !limit.ok())
-      return ToGrpcStatus(limit);
-    session::SessionState state;
-    if (in.samples_size() > 0) {
-      auto rows = LabelledRowsOf(in.samples());
-      if (!rows.ok()) return ToGrpcStatus(rows.status());
-      state.features = std::move(rows->features);
-      state.labels = std::move(rows->labels);
-    }
-    std::copy(in.target_rng_state().begin(), in.target_rng_state().end(),
-              state.target_random.begin());
-    state.interactions = in.interactions();
-
-    auto settings = SettingsFromProto(in.config());
+    auto state = StateFromProto(request->state(), max_features_per_request_);
+    if (!state.ok()) return ToGrpcStatus(state.status());
+    auto settings = SettingsFromProto(request->state().config());
     if (!settings.ok()) return ToGrpcStatus(settings.status());
-    const std::string config_blob = ProtoFromSettings(*settings).SerializeAsString();
-    auto created = registry_.Create(std::move(settings).value(), config_blob, NowUnixMs());
+    const std::string config_blob = StoredConfigOf(*settings);
+    auto created = registry_.Import(std::move(settings).value(), config_blob, *state, NowUnixMs());
     if (!created.ok()) return ToGrpcStatus(created.status());
     id = created->session->id();
-    auto stats = created->session->ImportState(state, NowUnixMs());
-    if (!stats.ok()) {
-      (void)registry_.Delete(id);  // no half-imported session stays behind
-      return ToGrpcStatus(stats.status());
-    }
     response->set_session_id(id);
     response->set_session_token(created->token);
-    FillStats(*stats, response->mutable_stats());
+    FillStats(created->session->Stats(), response->mutable_stats());
     registry_.HandOver(id);
     return grpc::Status::OK;
   });

@@ -1,5 +1,5 @@
-// The gRPC handlers of relevance.v1.RelevanceService: each translates the
-// request, checks the session token, delegates to the session layer and
+// The gRPC handlers of relevance.v1.RelevanceService: each authorises the call
+// (authorization.h), translates the request, delegates to the session layer and
 // translates back.
 #pragma once
 
@@ -24,8 +24,8 @@ struct ServiceLimits {
   perception::DecodeLimits decode;
   // Feature vectors in one ClassifyFeatures, AddSamples or ImportSession.
   std::size_t max_features_per_request = 100000;
-  // Calls that process a cloud (frame_admission.h): running at once, waiting,
-  // and the longest wait before RESOURCE_EXHAUSTED.
+  // Calls that process a cloud (session/frame_admission.h): running at once,
+  // waiting, and the longest wait before RESOURCE_EXHAUSTED.
   std::size_t concurrent_frames = 2;
   std::size_t queued_frames = 4;
   std::chrono::milliseconds max_frame_wait{10000};
@@ -38,12 +38,12 @@ class RelevanceService final : public v1::RelevanceService::Service {
   RelevanceService(session::SessionRegistry& registry, const ServiceLimits& limits,
                    std::string admin_key_hash = {})
       : registry_(registry),
+        authorization_(registry, std::move(admin_key_hash)),
         max_features_per_request_(limits.max_features_per_request),
         intake_({.decode = limits.decode,
                  .concurrent = limits.concurrent_frames,
                  .queued = limits.queued_frames,
-                 .max_wait = limits.max_frame_wait}),
-        authorization_(registry, std::move(admin_key_hash)) {}
+                 .max_wait = limits.max_frame_wait}) {}
 
   grpc::Status CreateSession(grpc::ServerContext* context, const v1::CreateSessionRequest* request,
                              v1::CreateSessionResponse* response) override;
@@ -62,8 +62,7 @@ class RelevanceService final : public v1::RelevanceService::Service {
                                 v1::ClassifyFeaturesResponse* response) override;
   grpc::Status AddSamples(grpc::ServerContext* context, const v1::AddSamplesRequest* request,
                           v1::AddSamplesResponse* response) override;
-  // Per-RPC counters and latencies, sessions and samples, in Prometheus's text
-  // format.
+  // Per-RPC counters and latencies, sessions and samples, in Prometheus's text format.
   std::string MetricsText() const;
 
   grpc::Status ExportSession(grpc::ServerContext* context, const v1::ExportSessionRequest* request,
@@ -72,25 +71,21 @@ class RelevanceService final : public v1::RelevanceService::Service {
                              v1::ImportSessionResponse* response) override;
 
  private:
-  // Authorization::SessionFor; UNAVAILABLE (another server owns the session in
-  // a shared store) gets a grpc-retry-pushback-ms trailer: nothing ran, and the
+  // Authorization::SessionFor; UNAVAILABLE (another server owns the session in a
+  // shared store) gets a grpc-retry-pushback-ms trailer: nothing ran, and the
   // session is free once that server lets it go or dies.
   StatusOr<std::shared_ptr<session::Session>> Authorised(grpc::ServerContext& context,
                                                          const std::string& id) const;
-
-  session::SessionRegistry& registry_;
-  // RESOURCE_EXHAUSTED when a request carries more feature vectors than
-  // allowed.
-  Status CheckFeatureCount(int count) const;
   // A decoded cloud and its processing slot (session::FrameIntake), waiting at
   // most until the call's deadline. A busy server's RESOURCE_EXHAUSTED gets a
   // grpc-retry-pushback-ms trailer, the signal that the call did nothing and may
   // be repeated.
   StatusOr<session::AdmittedCloud> TakeCloud(grpc::ServerContext& context, const v1::Cloud& cloud);
 
+  session::SessionRegistry& registry_;
+  const Authorization authorization_;
   const std::size_t max_features_per_request_;
   session::FrameIntake intake_;
-  const Authorization authorization_;
   Metrics metrics_;
 };
 

@@ -47,6 +47,19 @@ StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings setti
   return Created{std::move(shared), std::move(token)};
 }
 
+StatusOr<SessionRegistry::Created> SessionRegistry::Import(SessionSettings settings,
+                                                           std::string config_blob,
+                                                           const SessionState& state,
+                                                           std::int64_t now_unix_ms) {
+  auto created = Create(std::move(settings), std::move(config_blob), now_unix_ms);
+  if (!created.ok()) return created.status();
+  if (auto imported = created->session->ImportState(state, now_unix_ms); !imported.ok()) {
+    (void)Delete(created->session->id());
+    return imported.status();
+  }
+  return created;
+}
+
 StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) {
   const auto resident = [&]() -> std::shared_ptr<Session> {
     std::shared_lock lock(mutex_);

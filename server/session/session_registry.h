@@ -33,6 +33,10 @@ class SessionRegistry {
   // `config_blob` is what the store keeps to rebuild the settings after a restart.
   StatusOr<Created> Create(SessionSettings settings, std::string config_blob,
                            std::int64_t now_unix_ms);
+  // A new session as Create gives, which then learns an exported `state`
+  // (Session::ImportState). An import that fails leaves no session behind.
+  StatusOr<Created> Import(SessionSettings settings, std::string config_blob,
+                           const SessionState& state, std::int64_t now_unix_ms);
   // Loads a session that is in the store but not in memory (NOT_FOUND if the
   // store does not have it either), in place of LoadStoredSession.
   using Loader = std::function<StatusOr<std::shared_ptr<Session>>(const std::string& id)>;
