@@ -150,125 +150,155 @@ Status ExplorationLoop::RecordCloud(const std::string& directory, const std::str
   return WriteCloud(directory, stem, cloud);
 }
 
-Status ExplorationLoop::Iterate(int iteration, RunSummary* summary) {
-  const std::string directory = IterationDirectory(config_.run_dir(), iteration);
-  IterationStatus status;
-  std::optional<double> accuracy;
-  bool started = false;  // a frame was taken: the iteration is recorded
+Status ExplorationLoop::Iterate(int number, RunSummary* summary) {
+  Iteration iteration;
+  iteration.number = number;
+  iteration.directory = IterationDirectory(config_.run_dir(), number);
   for (int attempt = 0; attempt <= static_cast<int>(config_.retries()); ++attempt) {
     if (stop_ != nullptr && stop_->load()) {
-      status.set_state("stopped");
+      iteration.state = IterationState::kStopped;
       break;
     }
     if (summary->pushes >= static_cast<int>(config_.max_pushes())) break;
-    StatusOr<std::optional<SourceFrame>> frame = NextFrame();
-    if (!frame.ok()) return frame.status();
-    if (!frame->has_value()) {
+    StatusOr<bool> ended = Attempt(iteration, attempt, summary);
+    if (!ended.ok()) return ended.status();
+    if (*ended) break;
+  }
+  if (!iteration.started) return OkStatus();
+  return Conclude(iteration, summary);
+}
+
+StatusOr<bool> ExplorationLoop::Attempt(Iteration& iteration, int attempt, RunSummary* summary) {
+  StatusOr<std::optional<v1::ComputeMapsResponse>> mapped = MapNextFrame(iteration);
+  if (!mapped.ok()) return mapped.status();
+  if (!mapped->has_value()) {
+    source_ended_ = true;
+    iteration.End(attempt == 0 ? IterationState::kStopped : IterationState::kFailed,
+                  "the source has no more clouds");
+    return true;
+  }
+  const v1::ComputeMapsResponse& maps = **mapped;
+  StatusOr<std::optional<DriverRequest>> request = ChooseTarget(iteration, maps, attempt, summary);
+  if (!request.ok()) return request.status();
+  if (!request->has_value()) return true;  // nothing to push
+  ++summary->pushes;
+  ++iteration.attempts;
+  const StatusOr<PushOutcome> pushed = driver_.Push(**request);
+  if (Status s = Record(iteration.directory, "driver.json", AsRecord(pushed)); !s.ok()) return s;
+  if (!pushed.ok() || pushed->result != PushResult::kDone) {
+    // Nothing is learned from a push that did not happen; the next attempt starts
+    // from a fresh frame (a failed push may have disturbed the scene).
+    iteration.End(IterationState::kFailed,
+                  pushed.ok() ? std::string(PushResultName(pushed->result)) + ": " + pushed->message
+                              : pushed.status().message());
+    return false;
+  }
+  if (Status s = PostPushOutcome(iteration, maps, *pushed, summary); !s.ok()) return s;
+  return true;
+}
+
+StatusOr<std::optional<v1::ComputeMapsResponse>> ExplorationLoop::MapNextFrame(
+    Iteration& iteration) {
+  StatusOr<std::optional<SourceFrame>> frame = NextFrame();
+  if (!frame.ok()) return frame.status();
+  if (!frame->has_value()) return std::optional<v1::ComputeMapsResponse>();
+  iteration.started = true;
+  const SourceFrame& before = **frame;
+  v1::ComputeMapsResponse maps;
+  const client::PointLabels labels =
+      before.truth ? client::PointLabels::kInclude : client::PointLabels::kOmit;
+  if (Status s = client::FromGrpc(client_.ComputeMaps(session_, before.cloud, &maps, labels,
+                                                      client::MapsRepeat::kAfterBrokenConnection),
+                                  "ComputeMaps");
+      !s.ok()) {
+    return s;
+  }
+  if (before.truth) {
+    StatusOr<std::vector<bool>> truth = before.truth(maps);
+    if (!truth.ok()) return truth.status();
+    iteration.accuracy = MapAccuracy(maps, *truth);
+    IterationTruth record;
+    for (bool moveable : *truth) record.add_moveable(moveable);
+    if (Status s = Record(iteration.directory, "truth.json", record); !s.ok()) return s;
+  }
+  maps.clear_point_labels();
+  if (Status s = RecordCloud(iteration.directory, "before", before.cloud); !s.ok()) return s;
+  if (Status s = Record(iteration.directory, "maps.json", maps); !s.ok()) return s;
+  return std::optional<v1::ComputeMapsResponse>(std::move(maps));
+}
+
+StatusOr<std::optional<DriverRequest>> ExplorationLoop::ChooseTarget(
+    Iteration& iteration, const v1::ComputeMapsResponse& maps, int attempt, RunSummary* summary) {
+  if (!maps.has_target_supervoxel_id()) {
+    iteration.End(IterationState::kNoTarget, "no supervoxel with usable features");
+    return std::optional<DriverRequest>();
+  }
+  const v1::Supervoxel* target = FindSupervoxel(maps, maps.target_supervoxel_id());
+  if (target == nullptr) return InternalError("the server's target is not among its supervoxels");
+  DriverRequest request = MakeDriverRequest(session_.id, maps, *target, iteration.number, attempt);
+  if (Status s = Record(iteration.directory, "target.json", request); !s.ok()) return s;
+  if (config_.has_workspace() && !InWorkspace(config_.workspace(), request.centroid().x(),
+                                              request.centroid().y(), request.centroid().z())) {
+    iteration.End(IterationState::kSkipped,
+                  "target outside the workspace box; not sent to the driver");
+    ++summary->skipped;
+    return std::optional<DriverRequest>();
+  }
+  if (config_.dry_run()) {
+    std::cout << DriverRequestJson(request) << std::endl;
+    iteration.state = IterationState::kDryRun;  // the message stays as it was
+    ++summary->dry_run;
+    return std::optional<DriverRequest>();
+  }
+  return std::optional<DriverRequest>(std::move(request));
+}
+
+Status ExplorationLoop::PostPushOutcome(Iteration& iteration, const v1::ComputeMapsResponse& maps,
+                                        const PushOutcome& pushed, RunSummary* summary) {
+  v1::PostOutcomeResponse posted;
+  const std::string request_id = OutcomeRequestId(run_id_, iteration.number);
+  const std::uint32_t target = maps.target_supervoxel_id();
+  grpc::Status answer;
+  if (pushed.label) {
+    answer =
+        client_.PostOutcome(session_, maps.frame_id(), target, *pushed.label, request_id, &posted);
+  } else {
+    StatusOr<std::optional<SourceFrame>> after = source_.Next();
+    if (!after.ok()) return after.status();
+    if (!after->has_value()) {
       source_ended_ = true;
-      status.set_state(attempt == 0 ? "stopped" : "failed");
-      status.set_message("the source has no more clouds");
-      break;
+      iteration.End(IterationState::kFailed,
+                    "pushed, but the source has no after cloud: nothing posted");
+      return OkStatus();
     }
-    started = true;
-    const SourceFrame& before = **frame;
-    v1::ComputeMapsResponse maps;
-    const client::PointLabels labels =
-        before.truth ? client::PointLabels::kInclude : client::PointLabels::kOmit;
-    if (Status s = client::FromGrpc(client_.ComputeMaps(session_, before.cloud, &maps, labels,
-                                                        client::MapsRepeat::kAfterBrokenConnection),
-                                    "ComputeMaps");
-        !s.ok()) {
-      return s;
-    }
-    if (before.truth) {
-      StatusOr<std::vector<bool>> truth = before.truth(maps);
-      if (!truth.ok()) return truth.status();
-      accuracy = MapAccuracy(maps, *truth);
-      IterationTruth record;
-      for (bool moveable : *truth) record.add_moveable(moveable);
-      if (Status s = Record(directory, "truth.json", record); !s.ok()) return s;
-    }
-    maps.clear_point_labels();
-    if (Status s = RecordCloud(directory, "before", before.cloud); !s.ok()) return s;
-    if (Status s = Record(directory, "maps.json", maps); !s.ok()) return s;
-    if (!maps.has_target_supervoxel_id()) {
-      status.set_state("no_target");
-      status.set_message("no supervoxel with usable features");
-      break;
-    }
-    const v1::Supervoxel* target = FindSupervoxel(maps, maps.target_supervoxel_id());
-    if (target == nullptr) return InternalError("the server's target is not among its supervoxels");
-    const DriverRequest request = MakeDriverRequest(session_.id, maps, *target, iteration, attempt);
-    if (Status s = Record(directory, "target.json", request); !s.ok()) return s;
-    if (config_.has_workspace() && !InWorkspace(config_.workspace(), request.centroid().x(),
-                                                request.centroid().y(), request.centroid().z())) {
-      status.set_state("skipped");
-      status.set_message("target outside the workspace box; not sent to the driver");
-      ++summary->skipped;
-      break;
-    }
-    if (config_.dry_run()) {
-      std::cout << DriverRequestJson(request) << std::endl;
-      status.set_state("dry_run");
-      ++summary->dry_run;
-      break;
-    }
-    ++summary->pushes;
-    status.set_attempts(status.attempts() + 1);
-    const StatusOr<PushOutcome> pushed = driver_.Push(request);
-    if (Status s = Record(directory, "driver.json", AsRecord(pushed)); !s.ok()) return s;
-    if (!pushed.ok() || pushed->result != PushResult::kDone) {
-      // Nothing is learned from a push that did not happen; the next attempt starts
-      // from a fresh frame (a failed push may have disturbed the scene).
-      status.set_state("failed");
-      status.set_message(pushed.ok()
-                             ? std::string(PushResultName(pushed->result)) + ": " + pushed->message
-                             : pushed.status().message());
-      continue;
-    }
-    v1::PostOutcomeResponse posted;
-    const std::string request_id = OutcomeRequestId(run_id_, iteration);
-    grpc::Status answer;
-    if (pushed->label) {
-      answer = client_.PostOutcome(session_, maps.frame_id(), target->id(), *pushed->label,
-                                   request_id, &posted);
-    } else {
-      StatusOr<std::optional<SourceFrame>> after = source_.Next();
-      if (!after.ok()) return after.status();
-      if (!after->has_value()) {
-        source_ended_ = true;
-        status.set_state("failed");
-        status.set_message("pushed, but the source has no after cloud: nothing posted");
-        break;
-      }
-      if (Status s = RecordCloud(directory, "after", (*after)->cloud); !s.ok()) return s;
-      answer = client_.PostOutcome(session_, maps.frame_id(), target->id(), (*after)->cloud,
-                                   request_id, &posted);
-      after_ = std::move(*after);
-    }
-    if (client::IsFrameGone(answer)) {
-      // The push is done but cannot be learned; the next iteration starts from new maps.
-      status.set_state("failed");
-      status.set_message("pushed, but the server no longer has the frame: " +
-                         answer.error_message());
-      break;
-    }
-    if (Status s = client::FromGrpc(answer, "PostOutcome"); !s.ok()) return s;
-    if (Status s = Record(directory, "label.json", posted); !s.ok()) return s;
-    status.set_state("posted");
-    status.set_message(posted.label() == v1::LABEL_MOVEABLE ? "moved" : "still");
-    ++summary->posted;
-    break;
+    if (Status s = RecordCloud(iteration.directory, "after", (*after)->cloud); !s.ok()) return s;
+    answer = client_.PostOutcome(session_, maps.frame_id(), target, (*after)->cloud, request_id,
+                                 &posted);
+    after_ = std::move(*after);
   }
-  if (!started) return OkStatus();
-  if (status.state() == "failed") ++summary->failed;
-  if (status.state().empty()) {
-    status.set_state("stopped");
-    status.set_message("max_pushes reached");
+  if (client::IsFrameGone(answer)) {
+    // The push is done but cannot be learned; the next iteration starts from new maps.
+    iteration.End(IterationState::kFailed,
+                  "pushed, but the server no longer has the frame: " + answer.error_message());
+    return OkStatus();
   }
+  if (Status s = client::FromGrpc(answer, "PostOutcome"); !s.ok()) return s;
+  if (Status s = Record(iteration.directory, "label.json", posted); !s.ok()) return s;
+  iteration.End(IterationState::kPosted, posted.label() == v1::LABEL_MOVEABLE ? "moved" : "still");
+  ++summary->posted;
+  return OkStatus();
+}
+
+Status ExplorationLoop::Conclude(Iteration& iteration, RunSummary* summary) {
+  if (iteration.state == IterationState::kFailed) ++summary->failed;
+  if (!iteration.state) iteration.End(IterationState::kStopped, "max_pushes reached");
   ++summary->iterations;
-  if (Status s = Record(directory, "status.json", status); !s.ok()) return s;
-  Progress(iteration, status, *summary, accuracy);
+  IterationStatus status;
+  status.set_state(std::string(IterationStateName(*iteration.state)));
+  status.set_message(iteration.message);
+  status.set_attempts(iteration.attempts);
+  if (Status s = Record(iteration.directory, "status.json", status); !s.ok()) return s;
+  Progress(iteration.number, status, *summary, iteration.accuracy);
   return OkStatus();
 }
 

@@ -5,11 +5,13 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 #include <string>
 
 #include "cloud_source.h"
+#include "iteration_state.h"
 #include "pusher_driver.h"
 #include "relevance_client.h"
 #include "robot_messages.pb.h"
@@ -46,8 +48,40 @@ class ExplorationLoop {
   const std::string& run_id() const { return run_id_; }
 
  private:
+  // An iteration as it goes: how it has ended so far, and what it recorded.
+  struct Iteration {
+    int number = 0;
+    std::string directory;
+    std::optional<IterationState> state;  // unset while no attempt has ended it
+    std::string message;
+    std::uint32_t attempts = 0;  // pushes sent to the driver
+    bool started = false;        // a frame was taken: the iteration is recorded
+    std::optional<double> accuracy;
+    void End(IterationState ending, std::string why = {}) {
+      state = ending;
+      message = std::move(why);
+    }
+  };
+
   // One iteration with its retries; writes its status.
-  Status Iterate(int iteration, RunSummary* summary);
+  Status Iterate(int number, RunSummary* summary);
+  // One attempt: maps of the next frame, the target, the push, the outcome posted.
+  // True when it ended the iteration; false to try again from a fresh frame.
+  StatusOr<bool> Attempt(Iteration& iteration, int attempt, RunSummary* summary);
+  // The maps of the next frame, recorded with the frame (and its truth, when the
+  // source knows it); nullopt when the source has ended.
+  StatusOr<std::optional<v1::ComputeMapsResponse>> MapNextFrame(Iteration& iteration);
+  // The driver's request for the server's target, recorded; nullopt when there is
+  // nothing to push (no target, outside the workspace, a dry run), which ends the
+  // iteration.
+  StatusOr<std::optional<DriverRequest>> ChooseTarget(Iteration& iteration,
+                                                      const v1::ComputeMapsResponse& maps,
+                                                      int attempt, RunSummary* summary);
+  // Posts what a done push taught: the driver's label, else the after cloud.
+  Status PostPushOutcome(Iteration& iteration, const v1::ComputeMapsResponse& maps,
+                         const PushOutcome& pushed, RunSummary* summary);
+  // Counts the ended iteration, writes its status.json and its progress line.
+  Status Conclude(Iteration& iteration, RunSummary* summary);
   // The frame before the next push: the last after cloud (nothing moved since) or a
   // new capture; nullopt when the source has ended.
   StatusOr<std::optional<SourceFrame>> NextFrame();

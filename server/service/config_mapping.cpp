@@ -3,8 +3,6 @@
 
 #include <string>
 
-#include "perception/decode.h"
-
 namespace relmap::service {
 namespace {
 
@@ -243,18 +241,35 @@ void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence
   out->set_camera_translation_m(evidence.camera_translation_m);
 }
 
-StatusOr<perception::Cloud> CloudFromProto(const v1::Cloud& cloud,
-                                           const perception::DecodeLimits& limits) {
+session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud) {
+  session::EncodedCloud encoded;
   switch (cloud.encoding_case()) {
     case v1::Cloud::kPcd:
-      return perception::DecodePcd(cloud.pcd(), limits);
+      encoded.format = session::EncodedCloud::Format::kPcd;
+      encoded.bytes = cloud.pcd();
+      break;
     case v1::Cloud::kPacked:
-      return perception::DecodePacked(cloud.packed().points(), cloud.packed().width(),
-                                      cloud.packed().height(), limits);
+      encoded.format = session::EncodedCloud::Format::kPacked;
+      encoded.bytes = cloud.packed().points();
+      encoded.width = cloud.packed().width();
+      encoded.height = cloud.packed().height();
+      break;
     case v1::Cloud::ENCODING_NOT_SET:
       break;
   }
-  return InvalidArgumentError("the request carries no cloud (set cloud.pcd or cloud.packed)");
+  return encoded;
+}
+
+std::string StoredConfigOf(const session::SessionSettings& settings) {
+  return ProtoFromSettings(settings).SerializeAsString();
+}
+
+StatusOr<session::SessionSettings> SettingsOfStoredSession(const session::SessionRecord& record) {
+  v1::SessionConfig config;
+  if (!config.ParseFromString(record.config)) {
+    return DataLossError("session " + record.id + ": its stored configuration does not parse");
+  }
+  return SettingsFromProto(config);
 }
 
 }  // namespace relmap::service

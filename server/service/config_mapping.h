@@ -1,11 +1,14 @@
 // Translation between the API's messages and the session layer's types.
 #pragma once
 
+#include <string>
+
 #include "common/status.h"
 #include "perception/change_detector.h"
-#include "perception/cloud.h"
 #include "relmap/v1/relevance_service.pb.h"
+#include "session/frame_intake.h"
 #include "session/session.h"
+#include "session/session_record.h"
 #include "session/session_settings.h"
 
 namespace relmap::service {
@@ -26,8 +29,15 @@ void FillStats(const session::SessionStats& stats, v1::SessionStats* out);
 
 void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence* out);
 
-// The decoded cloud of a request: PCD bytes or the packed layout, validated.
-StatusOr<perception::Cloud> CloudFromProto(const v1::Cloud& cloud,
-                                           const perception::DecodeLimits& limits);
+// A request's cloud as session::FrameIntake takes it; the bytes stay `cloud`'s.
+session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud);
+
+// What the store keeps of `settings` (SessionRegistry::Create's config blob): their
+// SessionConfig, every default filled in, serialised.
+std::string StoredConfigOf(const session::SessionSettings& settings);
+
+// The settings of a stored session, from the SessionConfig that CreateSession
+// stored (session::StoredSettingsDecoder); DATA_LOSS when it does not parse.
+StatusOr<session::SessionSettings> SettingsOfStoredSession(const session::SessionRecord& record);
 
 }  // namespace relmap::service

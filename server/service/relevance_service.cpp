@@ -1,14 +1,14 @@
-// The handlers: validation, authorisation, proto <-> session translation.
+// The handlers: authorise, translate the request, call the session layer, translate
+// the answer or its status.
 #include "service/relevance_service.h"
 
-#include <algorithm>
-#include <cctype>
 #include <chrono>
 
 #include "service/call_log.h"
 #include "service/config_mapping.h"
+#include "service/payload_mapping.h"
 #include "service/status_mapping.h"
-#include "session/credentials.h"
+#include "session/session_listing.h"
 
 namespace relmap::service {
 namespace {
@@ -19,87 +19,18 @@ std::int64_t NowUnixMs() {
       .count();
 }
 
-// The label of the API as the classifier's 0/1; -1 if unset.
-int ClassOf(v1::Label label) {
-  switch (label) {
-    case v1::LABEL_MOVEABLE:
-      return 1;
-    case v1::LABEL_NOT_MOVEABLE:
-      return 0;
-    default:
-      return -1;
-  }
-}
-
-v1::Vector3 ToProto(const Eigen::Vector3f& v) {
-  v1::Vector3 out;
-  out.set_x(v.x()), out.set_y(v.y()), out.set_z(v.z());
-  return out;
-}
-
-// Feature vectors of a request as the rows of a matrix; ragged → INVALID_ARGUMENT.
-StatusOr<Eigen::MatrixXd> FeatureRows(
-    const google::protobuf::RepeatedPtrField<v1::FeatureVector>& rows) {
-  if (rows.empty()) return InvalidArgumentError("the request has no feature vector");
-  const int p = rows[0].values_size();
-  Eigen::MatrixXd matrix(rows.size(), p);
-  for (int i = 0; i < rows.size(); ++i) {
-    if (rows[i].values_size() != p) {
-      return InvalidArgumentError("feature vector " + std::to_string(i) + " has " +
-                                  std::to_string(rows[i].values_size()) + " values, vector 0 has " +
-                                  std::to_string(p));
-    }
-    for (int k = 0; k < p; ++k) matrix(i, k) = rows[i].values(k);
-  }
-  return matrix;
-}
-
-struct LabelledRows {
-  Eigen::MatrixXd features;
-  std::vector<int> labels;  // -1 where the label is unset
-};
-
-// Labelled feature vectors of a request; ragged → INVALID_ARGUMENT.
-StatusOr<LabelledRows> LabelledRowsOf(
-    const google::protobuf::RepeatedPtrField<v1::LabelledFeature>& samples) {
-  google::protobuf::RepeatedPtrField<v1::FeatureVector> vectors;
-  LabelledRows rows;
-  for (const v1::LabelledFeature& sample : samples) {
-    *vectors.Add() = sample.feature();
-    rows.labels.push_back(ClassOf(sample.label()));
-  }
-  auto features = FeatureRows(vectors);
-  if (!features.ok()) return features.status();
-  rows.features = std::move(features).value();
-  return rows;
-}
-
 }  // namespace
 
-Status RelevanceService::CheckFeatureCount(int count) const {
-  if (static_cast<std::size_t>(count) <= max_features_per_request_) return OkStatus();
-  return ResourceExhaustedError("the request carries " + std::to_string(count) +
-                                " feature vectors; this server takes at most " +
-                                std::to_string(max_features_per_request_) + " per request");
-}
-
-std::optional<FrameAdmission::Ticket> RelevanceService::AdmitFrame(
-    const grpc::ServerContext& context) {
-  return admission_.Enter(
-      std::min(context.deadline(), std::chrono::system_clock::now() + max_frame_wait_));
-}
-
-grpc::Status RelevanceService::Busy(grpc::ServerContext& context) const {
+StatusOr<session::AdmittedCloud> RelevanceService::TakeCloud(grpc::ServerContext& context,
+                                                             const v1::Cloud& cloud) {
+  session::FrameIntake::Taken taken = intake_.Take(EncodedCloudOf(cloud), context.deadline());
   // gRPC's server pushback trailer (retry design A6): the call did nothing, repeat it
-  // after this long. relmap's client reads it; gRPC's own retry policy would too. The
-  // reason says the same to clients that read the error details.
-  const std::string retry_after_ms = "100";
-  context.AddTrailingMetadata("grpc-retry-pushback-ms", retry_after_ms);
-  return ToGrpcStatus(
-      ResourceExhaustedError("busy: " + std::to_string(admission_.running()) +
-                             " clouds in progress and " + std::to_string(admission_.waiting()) +
-                             " waiting (--max-concurrent-frames, --max-queued-frames); retry later")
-          .WithReason(ErrorReason::kBusy, {{"retryAfterMs", retry_after_ms}}));
+  // after this long. relmap's client reads it; gRPC's own retry policy would too.
+  if (taken.busy) {
+    context.AddTrailingMetadata("grpc-retry-pushback-ms",
+                                std::to_string(session::FrameIntake::kBusyRetryAfterMs));
+  }
+  return std::move(taken.cloud);
 }
 
 std::string RelevanceService::MetricsText() const {
@@ -114,50 +45,11 @@ std::string RelevanceService::MetricsText() const {
 
 StatusOr<std::shared_ptr<session::Session>> RelevanceService::Authorised(
     grpc::ServerContext& context, const std::string& id) const {
-  if (id.empty()) return InvalidArgumentError("session_id is required");
-  const auto& metadata = context.client_metadata();
-  const auto header = metadata.find("authorization");
-  // The scheme's name is case-insensitive (RFC 7235 §2.1): "bearer" is a Bearer token.
-  constexpr std::string_view kBearer = "bearer ";
-  const auto is_bearer = [&](std::string_view value) {
-    return std::equal(kBearer.begin(), kBearer.end(), value.begin(), [](char want, char got) {
-      return want == std::tolower(static_cast<unsigned char>(got));
-    });
-  };
-  if (header == metadata.end() || header->second.size() <= kBearer.size() ||
-      !is_bearer(std::string_view(header->second.data(), kBearer.size()))) {
-    return Status(StatusCode::kUnauthenticated,
-                  "calls on a session need 'authorization: Bearer <session token>' metadata");
-  }
-  auto session = registry_.Find(id);
-  if (!session.ok()) {
-    if (session.status().code() == StatusCode::kUnavailable) {
-      context.AddTrailingMetadata("grpc-retry-pushback-ms", "200");
-    }
-    return session.status();
-  }
-  const std::string_view token(header->second.data() + kBearer.size(),
-                               header->second.size() - kBearer.size());
-  if (!session::TokenMatches(token, (*session)->token_hash())) {
-    return Status(StatusCode::kPermissionDenied, "wrong token for session '" + id + "'");
+  auto session = authorization_.SessionFor(CredentialsOf(context), id);
+  if (!session.ok() && session.status().code() == StatusCode::kUnavailable) {
+    context.AddTrailingMetadata("grpc-retry-pushback-ms", "200");
   }
   return session;
-}
-
-Status RelevanceService::AdminAuthorised(const grpc::ServerContext& context) const {
-  if (admin_key_hash_.empty()) return OkStatus();
-  const auto& metadata = context.client_metadata();
-  const auto header = metadata.find("x-relmap-admin-key");
-  if (header == metadata.end()) {
-    return Status(StatusCode::kUnauthenticated,
-                  "this server needs 'x-relmap-admin-key' metadata to create, list, delete or "
-                  "import sessions");
-  }
-  if (!session::TokenMatches(std::string_view(header->second.data(), header->second.size()),
-                             admin_key_hash_)) {
-    return Status(StatusCode::kPermissionDenied, "wrong admin key");
-  }
-  return OkStatus();
 }
 
 grpc::Status RelevanceService::CreateSession(grpc::ServerContext* context,
@@ -165,11 +57,13 @@ grpc::Status RelevanceService::CreateSession(grpc::ServerContext* context,
                                              v1::CreateSessionResponse* response) {
   std::string id;
   return Logged(metrics_, "CreateSession", id, [&] {
-    if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
+    if (Status admin = authorization_.Admin(CredentialsOf(*context)); !admin.ok()) {
+      return ToGrpcStatus(admin);
+    }
     auto settings = SettingsFromProto(request->config());
     if (!settings.ok()) return ToGrpcStatus(settings.status());
     // The store keeps the filled-in config, from which a restart rebuilds the settings.
-    const std::string config_blob = ProtoFromSettings(*settings).SerializeAsString();
+    const std::string config_blob = StoredConfigOf(*settings);
     auto created = registry_.Create(std::move(settings).value(), config_blob, NowUnixMs());
     if (!created.ok()) return ToGrpcStatus(created.status());
     id = created->session->id();
@@ -198,18 +92,13 @@ grpc::Status RelevanceService::ListSessions(grpc::ServerContext* context,
                                             const v1::ListSessionsRequest* request,
                                             v1::ListSessionsResponse* response) {
   return Logged(metrics_, "ListSessions", "", [&] {
-    if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
-    constexpr std::uint32_t kDefaultPageSize = 100, kMaxPageSize = 1000;
-    if (request->page_size() > kMaxPageSize) {
-      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                          "page_size is at most " + std::to_string(kMaxPageSize) + ", got " +
-                              std::to_string(request->page_size()));
+    if (Status admin = authorization_.Admin(CredentialsOf(*context)); !admin.ok()) {
+      return ToGrpcStatus(admin);
     }
-    const std::uint32_t page_size =
-        request->page_size() == 0 ? kDefaultPageSize : request->page_size();
-    const session::SessionRegistry::Page page = registry_.List(request->page_token(), page_size);
-    if (page.more) response->set_next_page_token(page.sessions.back()->id());
-    for (const auto& session : page.sessions) {
+    auto page = session::ListSessionPage(registry_, request->page_token(), request->page_size());
+    if (!page.ok()) return ToGrpcStatus(page.status());
+    response->set_next_page_token(page->next_page_token);
+    for (const auto& session : page->sessions) {
       v1::GetSessionResponse* entry = response->add_sessions();
       entry->set_session_id(session->id());
       *entry->mutable_config() = ProtoFromSettings(session->settings());
@@ -223,12 +112,9 @@ grpc::Status RelevanceService::DeleteSession(grpc::ServerContext* context,
                                              const v1::DeleteSessionRequest* request,
                                              v1::DeleteSessionResponse*) {
   return Logged(metrics_, "DeleteSession", request->session_id(), [&] {
-    // With an admin key the administrator deletes any session; without one, the
-    // session's own token is needed.
-    if (!admin_key_hash_.empty()) {
-      if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
-    } else if (auto session = Authorised(*context, request->session_id()); !session.ok()) {
-      return ToGrpcStatus(session.status());
+    if (Status allowed = authorization_.Deletion(CredentialsOf(*context), request->session_id());
+        !allowed.ok()) {
+      return ToGrpcStatus(allowed);
     }
     return ToGrpcStatus(registry_.Delete(request->session_id()));
   });
@@ -241,49 +127,20 @@ grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
     const auto start = std::chrono::steady_clock::now();
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    const std::optional<FrameAdmission::Ticket> admitted = AdmitFrame(*context);
-    if (!admitted) return Busy(*context);
-    const auto admitted_at = std::chrono::steady_clock::now();
-    auto cloud = CloudFromProto(request->cloud(), limits_);
+    auto cloud = TakeCloud(*context, request->cloud());
     if (!cloud.ok()) return ToGrpcStatus(cloud.status());
     const auto milliseconds = [](auto from, auto to) {
       return std::chrono::duration<double, std::milli>(to - from).count();
     };
-    const double admission_ms = milliseconds(start, admitted_at);
-    const double decode_ms = milliseconds(admitted_at, std::chrono::steady_clock::now());
-    auto mapped = (*session)->ComputeMaps(std::move(cloud).value(), NowUnixMs());
+    const double admission_ms = milliseconds(start, cloud->admitted_at);
+    const double decode_ms = milliseconds(cloud->admitted_at, cloud->decoded_at);
+    auto mapped = (*session)->ComputeMaps(std::move(cloud->cloud), NowUnixMs());
     if (!mapped.ok()) return ToGrpcStatus(mapped.status());
 
-    const perception::Frame& frame = *mapped->frame;
-    const exploration::FrameMaps& maps = mapped->maps;
-    response->set_frame_id(mapped->frame_id);
-    for (const perception::Supervoxel& sv : frame.segmentation.supervoxels) {
-      v1::Supervoxel* out = response->add_supervoxels();
-      out->set_id(sv.id);
-      *out->mutable_centroid() = ToProto(sv.centroid);
-      *out->mutable_normal() = ToProto(sv.normal);
-      out->set_point_count(static_cast<std::uint32_t>(sv.point_indices.size()));
-      out->set_relevance(maps.relevance[sv.id]);
-      out->set_choice(maps.choice[sv.id]);
-      if (request->include_features()) {
-        const auto row = frame.features.values.row(sv.id);
-        out->mutable_features()->Add(row.begin(), row.end());
-      }
-    }
-    if (maps.target >= 0)
-      response->set_target_supervoxel_id(static_cast<std::uint32_t>(maps.target));
-    if (!request->omit_point_labels()) {
-      response->mutable_point_labels()->Add(frame.segmentation.point_labels.begin(),
-                                            frame.segmentation.point_labels.end());
-    }
-    response->set_unusable_supervoxels(static_cast<std::uint32_t>(maps.unusable_rows));
+    FillMappedFrame(*mapped, request->include_features(), request->omit_point_labels(), response);
     v1::StageTimings* timings = response->mutable_timings();
     timings->set_admission_ms(admission_ms);
     timings->set_decode_ms(decode_ms);
-    timings->set_filter_ms(frame.timings.filter_ms);
-    timings->set_supervoxels_ms(frame.timings.supervoxels_ms);
-    timings->set_features_ms(frame.timings.features_ms);
-    timings->set_maps_ms(mapped->maps_ms);
     timings->set_total_ms(milliseconds(start, std::chrono::steady_clock::now()));
     return grpc::Status::OK;
   });
@@ -298,19 +155,17 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
     StatusOr<session::Outcome> outcome = InvalidArgumentError(
         "the outcome needs a label (LABEL_MOVEABLE or LABEL_NOT_MOVEABLE) or an after_cloud");
     if (request->has_after_cloud()) {
-      const std::optional<FrameAdmission::Ticket> admitted = AdmitFrame(*context);
-      if (!admitted) return Busy(*context);
-      auto after = CloudFromProto(request->after_cloud(), limits_);
+      auto after = TakeCloud(*context, request->after_cloud());
       if (!after.ok()) return ToGrpcStatus(after.status());
       outcome = (*session)->PostOutcomeFromCloud(request->frame_id(), request->supervoxel_id(),
-                                                 std::move(after).value(), request->request_id(),
+                                                 std::move(after->cloud), request->request_id(),
                                                  NowUnixMs());
     } else if (const int label = ClassOf(request->label()); label >= 0) {
       outcome = (*session)->PostOutcome(request->frame_id(), request->supervoxel_id(), label,
                                         request->request_id(), NowUnixMs());
     }
     if (!outcome.ok()) return ToGrpcStatus(outcome.status());
-    response->set_label(outcome->label == 1 ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE);
+    response->set_label(LabelOf(outcome->label));
     FillStats(outcome->stats, response->mutable_stats());
     if (outcome->evidence) FillEvidence(*outcome->evidence, response->mutable_evidence());
     return grpc::Status::OK;
@@ -323,7 +178,8 @@ grpc::Status RelevanceService::ClassifyFeatures(grpc::ServerContext* context,
   return Logged(metrics_, "ClassifyFeatures", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    if (Status limit = CheckFeatureCount(request->features_size()); !limit.ok()) {
+    if (Status limit = CheckFeatureCount(request->features_size(), max_features_per_request_);
+        !limit.ok()) {
       return ToGrpcStatus(limit);
     }
     auto rows = FeatureRows(request->features());
@@ -343,7 +199,8 @@ grpc::Status RelevanceService::AddSamples(grpc::ServerContext* context,
   return Logged(metrics_, "AddSamples", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    if (Status limit = CheckFeatureCount(request->samples_size()); !limit.ok()) {
+    if (Status limit = CheckFeatureCount(request->samples_size(), max_features_per_request_);
+        !limit.ok()) {
       return ToGrpcStatus(limit);
     }
     auto rows = LabelledRowsOf(request->samples());
@@ -362,19 +219,8 @@ grpc::Status RelevanceService::ExportSession(grpc::ServerContext* context,
   return Logged(metrics_, "ExportSession", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    const session::SessionState state = (*session)->ExportState();
-    v1::SessionState* out = response->mutable_state();
-    *out->mutable_config() = ProtoFromSettings((*session)->settings());
-    for (Eigen::Index i = 0; i < state.features.rows(); ++i) {
-      v1::LabelledFeature* sample = out->add_samples();
-      for (Eigen::Index k = 0; k < state.features.cols(); ++k) {
-        sample->mutable_feature()->add_values(state.features(i, k));
-      }
-      sample->set_label(state.labels[static_cast<std::size_t>(i)] == 1 ? v1::LABEL_MOVEABLE
-                                                                       : v1::LABEL_NOT_MOVEABLE);
-    }
-    out->mutable_target_rng_state()->Add(state.target_random.begin(), state.target_random.end());
-    out->set_interactions(state.interactions);
+    *response->mutable_state()->mutable_config() = ProtoFromSettings((*session)->settings());
+    FillState((*session)->ExportState(), response->mutable_state());
     FillStats((*session)->Stats(), response->mutable_stats());
     return grpc::Status::OK;
   });
@@ -385,39 +231,20 @@ grpc::Status RelevanceService::ImportSession(grpc::ServerContext* context,
                                              v1::ImportSessionResponse* response) {
   std::string id;
   return Logged(metrics_, "ImportSession", id, [&] {
-    if (Status admin = AdminAuthorised(*context); !admin.ok()) return ToGrpcStatus(admin);
-    const v1::SessionState& in = request->state();
-    if (in.target_rng_state_size() != 4) {
-      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                          "state.target_rng_state must hold the 4 words of the RNG");
+    if (Status admin = authorization_.Admin(CredentialsOf(*context)); !admin.ok()) {
+      return ToGrpcStatus(admin);
     }
-    if (Status limit = CheckFeatureCount(in.samples_size()); !limit.ok())
-      return ToGrpcStatus(limit);
-    session::SessionState state;
-    if (in.samples_size() > 0) {
-      auto rows = LabelledRowsOf(in.samples());
-      if (!rows.ok()) return ToGrpcStatus(rows.status());
-      state.features = std::move(rows->features);
-      state.labels = std::move(rows->labels);
-    }
-    std::copy(in.target_rng_state().begin(), in.target_rng_state().end(),
-              state.target_random.begin());
-    state.interactions = in.interactions();
-
-    auto settings = SettingsFromProto(in.config());
+    auto state = StateFromProto(request->state(), max_features_per_request_);
+    if (!state.ok()) return ToGrpcStatus(state.status());
+    auto settings = SettingsFromProto(request->state().config());
     if (!settings.ok()) return ToGrpcStatus(settings.status());
-    const std::string config_blob = ProtoFromSettings(*settings).SerializeAsString();
-    auto created = registry_.Create(std::move(settings).value(), config_blob, NowUnixMs());
+    const std::string config_blob = StoredConfigOf(*settings);
+    auto created = registry_.Import(std::move(settings).value(), config_blob, *state, NowUnixMs());
     if (!created.ok()) return ToGrpcStatus(created.status());
     id = created->session->id();
-    auto stats = created->session->ImportState(state, NowUnixMs());
-    if (!stats.ok()) {
-      (void)registry_.Delete(id);  // no half-imported session stays behind
-      return ToGrpcStatus(stats.status());
-    }
     response->set_session_id(id);
     response->set_session_token(created->token);
-    FillStats(*stats, response->mutable_stats());
+    FillStats(created->session->Stats(), response->mutable_stats());
     registry_.HandOver(id);
     return grpc::Status::OK;
   });

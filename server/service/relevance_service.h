@@ -1,5 +1,6 @@
-// The gRPC handlers of relevance.v1.RelevanceService: each translates the request,
-// checks the session token, delegates to the session layer and translates back.
+// The gRPC handlers of relevance.v1.RelevanceService: each authorises the call
+// (authorization.h), translates the request, delegates to the session layer and
+// translates back.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -11,8 +12,9 @@
 
 #include "perception/perception_config.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
-#include "service/frame_admission.h"
+#include "service/authorization.h"
 #include "service/metrics.h"
+#include "session/frame_intake.h"
 #include "session/session_registry.h"
 
 namespace relmap::service {
@@ -22,8 +24,8 @@ struct ServiceLimits {
   perception::DecodeLimits decode;
   // Feature vectors in one ClassifyFeatures, AddSamples or ImportSession.
   std::size_t max_features_per_request = 100000;
-  // Calls that process a cloud (frame_admission.h): running at once, waiting, and
-  // the longest wait before RESOURCE_EXHAUSTED.
+  // Calls that process a cloud (session/frame_admission.h): running at once,
+  // waiting, and the longest wait before RESOURCE_EXHAUSTED.
   std::size_t concurrent_frames = 2;
   std::size_t queued_frames = 4;
   std::chrono::milliseconds max_frame_wait{10000};
@@ -36,11 +38,12 @@ class RelevanceService final : public v1::RelevanceService::Service {
   RelevanceService(session::SessionRegistry& registry, const ServiceLimits& limits,
                    std::string admin_key_hash = {})
       : registry_(registry),
-        limits_(limits.decode),
+        authorization_(registry, std::move(admin_key_hash)),
         max_features_per_request_(limits.max_features_per_request),
-        max_frame_wait_(limits.max_frame_wait),
-        admission_(limits.concurrent_frames, limits.queued_frames),
-        admin_key_hash_(std::move(admin_key_hash)) {}
+        intake_({.decode = limits.decode,
+                 .concurrent = limits.concurrent_frames,
+                 .queued = limits.queued_frames,
+                 .max_wait = limits.max_frame_wait}) {}
 
   grpc::Status CreateSession(grpc::ServerContext* context, const v1::CreateSessionRequest* request,
                              v1::CreateSessionResponse* response) override;
@@ -68,33 +71,21 @@ class RelevanceService final : public v1::RelevanceService::Service {
                              v1::ImportSessionResponse* response) override;
 
  private:
-  // The session `id`, if the call's `authorization: Bearer <token>` matches it:
-  // UNAUTHENTICATED without a bearer token, PERMISSION_DENIED with a wrong one,
-  // NOT_FOUND for an unknown session. UNAVAILABLE while another server owns the
-  // session in a shared store, with a grpc-retry-pushback-ms trailer: nothing ran,
-  // and the session is free once that server lets it go or dies.
+  // Authorization::SessionFor; UNAVAILABLE (another server owns the session in a
+  // shared store) gets a grpc-retry-pushback-ms trailer: nothing ran, and the
+  // session is free once that server lets it go or dies.
   StatusOr<std::shared_ptr<session::Session>> Authorised(grpc::ServerContext& context,
                                                          const std::string& id) const;
-
-  // OK when no admin key is configured or the call's `x-relmap-admin-key`
-  // matches; UNAUTHENTICATED without one, PERMISSION_DENIED with a wrong one.
-  Status AdminAuthorised(const grpc::ServerContext& context) const;
+  // A decoded cloud and its processing slot (session::FrameIntake), waiting at
+  // most until the call's deadline. A busy server's RESOURCE_EXHAUSTED gets a
+  // grpc-retry-pushback-ms trailer, the signal that the call did nothing and may
+  // be repeated.
+  StatusOr<session::AdmittedCloud> TakeCloud(grpc::ServerContext& context, const v1::Cloud& cloud);
 
   session::SessionRegistry& registry_;
-  // RESOURCE_EXHAUSTED when a request carries more feature vectors than allowed.
-  Status CheckFeatureCount(int count) const;
-  // A slot to process a cloud in, waiting at most until the call's deadline or
-  // max_frame_wait_; without one, RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms
-  // trailer, the signal that the call did nothing and may be repeated.
-  std::optional<FrameAdmission::Ticket> AdmitFrame(const grpc::ServerContext& context);
-  // The answer without a slot: that pushback trailer, and the reason BUSY.
-  grpc::Status Busy(grpc::ServerContext& context) const;
-
-  const perception::DecodeLimits limits_;
+  const Authorization authorization_;
   const std::size_t max_features_per_request_;
-  const std::chrono::milliseconds max_frame_wait_;
-  FrameAdmission admission_;
-  const std::string admin_key_hash_;
+  session::FrameIntake intake_;
   Metrics metrics_;
 };
 

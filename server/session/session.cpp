@@ -132,9 +132,7 @@ StatusOr<Outcome> Session::PostOutcome(std::uint64_t frame_id, std::uint32_t sup
                                        int label, const std::string& request_id,
                                        std::int64_t now_unix_ms) {
   std::lock_guard lock(mutex_);
-  if (!request_id.empty()) {
-    if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
-  }
+  if (const Outcome* answered = AnsweredLocked(request_id)) return *answered;
   if (label != 0 && label != 1) return InvalidArgumentError("label must be 0 or 1");
   auto frame = FrameForOutcomeLocked(frame_id, supervoxel_id);
   if (!frame.ok()) return frame.status();
@@ -148,9 +146,7 @@ StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uin
   std::shared_ptr<const perception::Frame> frame;
   {
     std::lock_guard lock(mutex_);
-    if (!request_id.empty()) {
-      if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
-    }
+    if (const Outcome* answered = AnsweredLocked(request_id)) return *answered;
     auto found = FrameForOutcomeLocked(frame_id, supervoxel_id);
     if (!found.ok()) return found.status();
     frame = std::move(found).value();
@@ -164,9 +160,7 @@ StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uin
   const int label = evidence->moved ? 1 : 0;
 
   std::lock_guard lock(mutex_);
-  if (!request_id.empty()) {
-    if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second;
-  }
+  if (const Outcome* answered = AnsweredLocked(request_id)) return *answered;
   return LearnOutcomeLocked(*frame, supervoxel_id, label, request_id, std::move(evidence).value(),
                             now_unix_ms);
 }
@@ -209,9 +203,7 @@ StatusOr<SessionStats> Session::AddSamples(const Eigen::MatrixXd& features,
     }
   }
   std::lock_guard lock(mutex_);
-  if (!request_id.empty()) {
-    if (const auto it = answered_.find(request_id); it != answered_.end()) return it->second.stats;
-  }
+  if (const Outcome* answered = AnsweredLocked(request_id)) return answered->stats;
   // One store key per sample: a retried batch skips what was committed already.
   const std::string prefix = request_id.empty() ? "auto-" + RandomHex(12) : request_id;
   for (Eigen::Index i = 0; i < features.rows(); ++i) {
@@ -301,6 +293,12 @@ void Session::RestoreCounters(std::uint64_t frames, std::uint64_t interactions) 
   next_frame_id_ = frames + 1;
   interactions_ = interactions;
   for (std::uint64_t i = 0; i < interactions; ++i) (void)random_.NextBits();
+}
+
+const Outcome* Session::AnsweredLocked(const std::string& request_id) const {
+  if (request_id.empty()) return nullptr;  // no id: never a retry
+  const auto it = answered_.find(request_id);
+  return it == answered_.end() ? nullptr : &it->second;
 }
 
 void Session::RememberLocked(const std::string& request_id, const Outcome& outcome) {

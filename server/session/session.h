@@ -159,6 +159,8 @@ class Session {
   // kRememberedAnswers (with a store, older retries are still not learned twice:
   // the store deduplicates them).
   void RememberLocked(const std::string& request_id, const Outcome& outcome);
+  // The answer given before under `request_id`, or null (always for an empty id).
+  const Outcome* AnsweredLocked(const std::string& request_id) const;
 
   std::map<std::string, Outcome> answered_;  // request id → the answer given
   std::deque<std::string> answered_order_;   // oldest first

@@ -9,6 +9,16 @@
 
 namespace relmap::session {
 
+SessionRegistry::SessionRegistry(std::size_t max_sessions, SessionStore* store,
+                                 StoredSettingsDecoder decode_settings)
+    : max_sessions_(max_sessions), store_(store) {
+  if (store_ != nullptr && decode_settings) {
+    loader_ = [store, decode = std::move(decode_settings)](const std::string& id) {
+      return LoadStoredSession(*store, id, decode);
+    };
+  }
+}
+
 StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings settings,
                                                            std::string config_blob,
                                                            std::int64_t now_unix_ms) {
@@ -35,6 +45,19 @@ StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings setti
   }
   sessions_.emplace(shared->id(), shared);
   return Created{std::move(shared), std::move(token)};
+}
+
+StatusOr<SessionRegistry::Created> SessionRegistry::Import(SessionSettings settings,
+                                                           std::string config_blob,
+                                                           const SessionState& state,
+                                                           std::int64_t now_unix_ms) {
+  auto created = Create(std::move(settings), std::move(config_blob), now_unix_ms);
+  if (!created.ok()) return created.status();
+  if (auto imported = created->session->ImportState(state, now_unix_ms); !imported.ok()) {
+    (void)Delete(created->session->id());
+    return imported.status();
+  }
+  return created;
 }
 
 StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) {

@@ -12,15 +12,18 @@
 
 #include "common/status.h"
 #include "session/session.h"
+#include "session/session_restore.h"
 
 namespace relmap::session {
 
 class SessionRegistry {
  public:
   // With a `store`, sessions are created and deleted there too, and their
-  // samples committed there before they are learned.
-  explicit SessionRegistry(std::size_t max_sessions, SessionStore* store = nullptr)
-      : max_sessions_(max_sessions), store_(store) {}
+  // samples committed there before they are learned; with `decode_settings` as
+  // well, stored sessions come back into memory on their first call
+  // (session_restore.h).
+  explicit SessionRegistry(std::size_t max_sessions, SessionStore* store = nullptr,
+                           StoredSettingsDecoder decode_settings = {});
 
   struct Created {
     std::shared_ptr<Session> session;
@@ -30,8 +33,12 @@ class SessionRegistry {
   // `config_blob` is what the store keeps to rebuild the settings after a restart.
   StatusOr<Created> Create(SessionSettings settings, std::string config_blob,
                            std::int64_t now_unix_ms);
+  // A new session as Create gives, which then learns an exported `state`
+  // (Session::ImportState). An import that fails leaves no session behind.
+  StatusOr<Created> Import(SessionSettings settings, std::string config_blob,
+                           const SessionState& state, std::int64_t now_unix_ms);
   // Loads a session that is in the store but not in memory (NOT_FOUND if the
-  // store does not have it either).
+  // store does not have it either), in place of LoadStoredSession.
   using Loader = std::function<StatusOr<std::shared_ptr<Session>>(const std::string& id)>;
   void set_loader(Loader loader) { loader_ = std::move(loader); }
 

@@ -1,6 +1,6 @@
 // FrameAdmission: at most `concurrent` calls run, at most `queued` wait, the rest are
 // refused at once, and a waiter gives up at its deadline.
-#include "service/frame_admission.h"
+#include "session/frame_admission.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <chrono>
 #include <thread>
 
-namespace relmap::service {
+namespace relmap::session {
 namespace {
 
 using std::chrono::milliseconds;
@@ -52,4 +52,4 @@ TEST(FrameAdmission, TheQueueIsBoundedAndAWaiterGivesUpAtItsDeadline) {
 }
 
 }  // namespace
-}  // namespace relmap::service
+}  // namespace relmap::session

@@ -1,25 +1,18 @@
-// Loading a stored session; the service layer owns it because the stored settings
-// are the API's SessionConfig message.
-#include "service/session_restore.h"
+// Loading a stored session: record, settings, snapshot, samples, counters.
+#include "session/session_restore.h"
 
 #include <spdlog/spdlog.h>
 
 #include <chrono>
 
-#include "service/config_mapping.h"
+namespace relmap::session {
 
-namespace relmap::service {
-
-StatusOr<std::shared_ptr<session::Session>> LoadStoredSession(session::SessionStore& store,
-                                                              const std::string& id) {
+StatusOr<std::shared_ptr<Session>> LoadStoredSession(SessionStore& store, const std::string& id,
+                                                     const StoredSettingsDecoder& decode_settings) {
   const auto start = std::chrono::steady_clock::now();
   auto record = store.LoadSession(id);
   if (!record.ok()) return record.status();
-  v1::SessionConfig config;
-  if (!config.ParseFromString(record->config)) {
-    return DataLossError("session " + id + ": its stored configuration does not parse");
-  }
-  auto settings = SettingsFromProto(config);
+  auto settings = decode_settings(*record);
   if (!settings.ok()) return settings.status();
   // The classifier as the store recorded it field by field: a session stored
   // as "corrected" before December 2026 was migrated to corrected_v1 there,
@@ -31,8 +24,8 @@ StatusOr<std::shared_ptr<session::Session>> LoadStoredSession(session::SessionSt
   const std::int64_t created_ms =
       std::chrono::duration_cast<std::chrono::milliseconds>(record->created_at.time_since_epoch())
           .count();
-  auto loaded = session::Session::Create(record->id, record->token_hash,
-                                         std::move(settings).value(), created_ms, &store);
+  auto loaded = Session::Create(record->id, record->token_hash, std::move(settings).value(),
+                                created_ms, &store);
   if (!loaded.ok()) return loaded.status();
   // The latest snapshot, if any, then the samples after it.
   auto snapshot = store.LoadLatestSnapshot(id);
@@ -53,7 +46,7 @@ StatusOr<std::shared_ptr<session::Session>> LoadStoredSession(session::SessionSt
       "restored session={} samples={} (snapshot of {}) in {:.1f} ms", id, samples->size(),
       from_snapshot,
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  return std::shared_ptr<session::Session>(std::move(loaded).value());
+  return std::shared_ptr<Session>(std::move(loaded).value());
 }
 
-}  // namespace relmap::service
+}  // namespace relmap::session

@@ -12,7 +12,7 @@
 #include <mutex>
 #include <optional>
 
-namespace relmap::service {
+namespace relmap::session {
 
 class FrameAdmission {
  public:
@@ -53,4 +53,4 @@ class FrameAdmission {
   std::size_t waiting_ = 0;
 };
 
-}  // namespace relmap::service
+}  // namespace relmap::session

@@ -1,7 +1,7 @@
 // A counting semaphore with a bounded number of waiters.
-#include "service/frame_admission.h"
+#include "session/frame_admission.h"
 
-namespace relmap::service {
+namespace relmap::session {
 
 std::optional<FrameAdmission::Ticket> FrameAdmission::Enter(
     std::chrono::system_clock::time_point deadline) {
@@ -37,4 +37,4 @@ std::size_t FrameAdmission::waiting() const {
   return waiting_;
 }
 
-}  // namespace relmap::service
+}  // namespace relmap::session

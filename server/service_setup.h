@@ -1,0 +1,30 @@
+// What relmap-server builds from its options before it serves: the store, the
+// registry over it, and the service's limits and admin key.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "common/status.h"
+#include "server_options.h"
+#include "service/relevance_service.h"
+#include "session/session_registry.h"
+#include "session/session_store.h"
+
+namespace relmap::server {
+
+// The store of --store or --data-dir, or null (with a warning: sessions live in
+// memory only) without either; the store's error when it cannot be opened.
+StatusOr<std::unique_ptr<session::SessionStore>> OpenConfiguredStore(const ServerOptions& options);
+
+// The registry of the options' limits and policy over `store` (may be null), which
+// brings stored sessions back on their first call.
+std::unique_ptr<session::SessionRegistry> BuildRegistry(const ServerOptions& options,
+                                                        session::SessionStore* store);
+
+service::ServiceLimits ServiceLimitsOf(const ServerOptions& options);
+
+// SHA-256 hex of --admin-key, or empty without one.
+std::string AdminKeyHashOf(const ServerOptions& options);
+
+}  // namespace relmap::server

@@ -1,0 +1,225 @@
+// SessionRegistry through its C++ interface: creation within the limit, lookup and
+// deletion, pages in id order, and sessions restored from a store on their first
+// call after eviction.
+#include "session/session_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "session/credentials.h"
+#include "session/feature_settings.h"
+#include "session/session_listing.h"
+#include "session/sqlite_session_store.h"
+#include "session/store_test_support.h"
+
+namespace relmap::session {
+namespace {
+
+// Sessions fed with feature vectors, not clouds, unless a test says otherwise.
+using testing::FeatureSettings;
+constexpr int kDimension = testing::kTestFeatureDimension;
+
+std::string CreateOne(SessionRegistry& registry) {
+  auto created = registry.Create(FeatureSettings(), "config", 0);
+  EXPECT_TRUE(created.ok()) << created.status().message();
+  return created.ok() ? created->session->id() : "";
+}
+
+TEST(SessionRegistry, ACreatedSessionIsFoundByItsIdAndItsTokenMatches) {
+  SessionRegistry registry(4);
+  auto created = registry.Create(FeatureSettings(), "config", 0);
+  ASSERT_TRUE(created.ok());
+  auto found = registry.Find(created->session->id());
+  ASSERT_TRUE(found.ok());
+  EXPECT_EQ(found->get(), created->session.get());
+  EXPECT_TRUE(TokenMatches(created->token, (*found)->token_hash()));
+  EXPECT_NE((*found)->token_hash(), created->token);  // the registry keeps the hash only
+}
+
+TEST(SessionRegistry, AnUnknownIdIsNotFound) {
+  SessionRegistry registry(4);
+  EXPECT_EQ(registry.Find("nobody").status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(registry.Delete("nobody").code(), StatusCode::kNotFound);
+}
+
+TEST(SessionRegistry, ADeletedSessionIsNotFound) {
+  SessionRegistry registry(4);
+  const std::string id = CreateOne(registry);
+  ASSERT_TRUE(registry.Delete(id).ok());
+  EXPECT_EQ(registry.Find(id).status().code(), StatusCode::kNotFound);
+  EXPECT_TRUE(registry.Resident().empty());
+}
+
+TEST(SessionRegistry, TheLimitIsResourceExhaustedUntilASessionIsDeleted) {
+  SessionRegistry registry(2);
+  const std::string first = CreateOne(registry);
+  CreateOne(registry);
+  EXPECT_EQ(registry.Create(FeatureSettings(), "config", 0).status().code(),
+            StatusCode::kResourceExhausted);
+  ASSERT_TRUE(registry.Delete(first).ok());
+  EXPECT_TRUE(registry.Create(FeatureSettings(), "config", 0).ok());
+}
+
+TEST(SessionRegistry, InvalidSettingsCreateNothing) {
+  SessionRegistry registry(2);
+  SessionSettings settings = FeatureSettings();
+  settings.feature_dimension = 0;
+  EXPECT_EQ(registry.Create(settings, "config", 0).status().code(), StatusCode::kInvalidArgument);
+  EXPECT_TRUE(registry.Resident().empty());
+}
+
+TEST(SessionRegistry, GivesEveryNewSessionItsPolicy) {
+  SessionRegistry registry(2);
+  registry.set_policy({.frame_cache = 1});
+  auto created = registry.Create(SessionSettings{}, "config", 0);
+  ASSERT_TRUE(created.ok());
+  // Seen through the cache: an unknown frame's message names its size.
+  EXPECT_NE(created->session->PostOutcome(1, 0, 1, "r", 0).status().message().find("last 1 frames"),
+            std::string::npos);
+}
+
+TEST(SessionRegistry, WithoutAStoreNothingIsEvictedOrReleased) {
+  SessionRegistry registry(2);
+  const std::string id = CreateOne(registry);
+  EXPECT_TRUE(registry.EvictIdle(1'000'000).empty());
+  registry.ReleaseAll();
+  EXPECT_TRUE(registry.Find(id).ok());  // memory is the only copy
+}
+
+TEST(SessionRegistry, AnImportedSessionHoldsTheExportedSamples) {
+  SessionRegistry registry(4);
+  auto original = registry.Create(FeatureSettings(), "config", 0);
+  ASSERT_TRUE(original.ok());
+  ASSERT_TRUE(
+      original->session->AddSamples(Eigen::MatrixXd::Ones(2, kDimension), {1, 0}, "r1", 0).ok());
+  const SessionState exported = original->session->ExportState();
+  auto imported = registry.Import(FeatureSettings(), "config", exported, 0);
+  ASSERT_TRUE(imported.ok()) << imported.status().message();
+  EXPECT_NE(imported->session->id(), original->session->id());
+  EXPECT_EQ(imported->session->ExportState().features, exported.features);
+  EXPECT_TRUE(registry.Find(imported->session->id()).ok());
+}
+
+TEST(SessionRegistry, AnImportThatFailsLeavesNoSessionBehind) {
+  SessionRegistry registry(4);
+  SessionState unlabelled;
+  unlabelled.features = Eigen::MatrixXd::Ones(1, kDimension);
+  unlabelled.labels = {-1};
+  EXPECT_EQ(registry.Import(FeatureSettings(), "config", unlabelled, 0).status().code(),
+            StatusCode::kInvalidArgument);
+  EXPECT_TRUE(registry.Resident().empty());
+}
+
+TEST(SessionListing, PagesWalkEverySessionOnceInIdOrder) {
+  SessionRegistry registry(8);
+  std::vector<std::string> created;
+  for (int i = 0; i < 5; ++i) created.push_back(CreateOne(registry));
+  std::sort(created.begin(), created.end());
+  std::vector<std::string> listed;
+  std::string token;
+  int pages = 0;
+  do {
+    auto page = ListSessionPage(registry, token, 2);
+    ASSERT_TRUE(page.ok());
+    for (const auto& session : page->sessions) listed.push_back(session->id());
+    token = page->next_page_token;
+    ++pages;
+  } while (!token.empty());
+  EXPECT_EQ(listed, created);
+  EXPECT_EQ(pages, 3);  // 2 + 2 + 1
+}
+
+TEST(SessionListing, APageSizeOfZeroIsTheDefault) {
+  SessionRegistry registry(8);
+  for (int i = 0; i < 3; ++i) CreateOne(registry);
+  auto page = ListSessionPage(registry, "", 0);
+  ASSERT_TRUE(page.ok());
+  EXPECT_EQ(page->sessions.size(), 3u);
+  EXPECT_TRUE(page->next_page_token.empty());
+}
+
+TEST(SessionListing, PagesOfMoreThanTheMaximumAreInvalid) {
+  SessionRegistry registry(8);
+  EXPECT_EQ(ListSessionPage(registry, "", kMaxSessionPageSize + 1).status().code(),
+            StatusCode::kInvalidArgument);
+  EXPECT_TRUE(ListSessionPage(registry, "", kMaxSessionPageSize).ok());
+}
+
+// The registry over a SQLite file, restoring with a decoder that counts its calls.
+class StoredRegistry : public testing::StoreTest {
+ protected:
+  void SetUp() override {
+    StoreTest::SetUp();
+    auto opened = SqliteSessionStore::Open(path_);
+    ASSERT_TRUE(opened.ok()) << opened.status().message();
+    store_ = std::move(opened).value();
+    registry_ = std::make_unique<SessionRegistry>(
+        8, store_.get(), [this](const SessionRecord& record) -> StatusOr<SessionSettings> {
+          ++decoded_;
+          EXPECT_EQ(record.config, "config");
+          return FeatureSettings();
+        });
+  }
+
+  void TearDown() override {
+    registry_.reset();
+    store_.reset();
+    StoreTest::TearDown();
+  }
+
+  std::unique_ptr<SqliteSessionStore> store_;
+  std::unique_ptr<SessionRegistry> registry_;
+  int decoded_ = 0;
+};
+
+TEST_F(StoredRegistry, AnEvictedSessionComesBackWithItsSamplesOnItsNextCall) {
+  const std::string id = CreateOne(*registry_);
+  auto session = registry_->Find(id);
+  ASSERT_TRUE(session.ok());
+  ASSERT_TRUE((*session)->AddSamples(Eigen::MatrixXd::Ones(2, kDimension), {1, 0}, "r1", 10).ok());
+  const SessionState before = (*session)->ExportState();
+  session->reset();  // no call holds it any more
+  EXPECT_EQ(registry_->EvictIdle(20), std::vector<std::string>{id});
+  EXPECT_TRUE(registry_->Resident().empty());
+  EXPECT_EQ(decoded_, 0);
+
+  auto restored = registry_->Find(id);
+  ASSERT_TRUE(restored.ok()) << restored.status().message();
+  EXPECT_EQ(decoded_, 1);
+  EXPECT_EQ((*restored)->ExportState().features, before.features);
+  EXPECT_EQ((*restored)->ExportState().labels, before.labels);
+}
+
+TEST_F(StoredRegistry, ASessionInUseOrUsedSinceTheCutoffStaysInMemory) {
+  const std::string held = CreateOne(*registry_);
+  auto session = registry_->Find(held);
+  ASSERT_TRUE(session.ok());
+  auto recent = registry_->Create(FeatureSettings(), "config", 100);
+  ASSERT_TRUE(recent.ok());
+  recent->session.reset();
+  EXPECT_TRUE(registry_->EvictIdle(50).empty());
+  EXPECT_EQ(registry_->Resident().size(), 2u);
+}
+
+TEST_F(StoredRegistry, ADeletedSessionIsGoneFromTheStoreToo) {
+  const std::string id = CreateOne(*registry_);
+  ASSERT_TRUE(registry_->Delete(id).ok());
+  EXPECT_EQ(registry_->Find(id).status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(store_->LoadSession(id).status().code(), StatusCode::kNotFound);
+}
+
+TEST_F(StoredRegistry, ASettingsDecoderErrorIsTheLookupsError) {
+  const std::string id = CreateOne(*registry_);
+  registry_->ReleaseAll();
+  SessionRegistry failing(8, store_.get(), [](const SessionRecord&) -> StatusOr<SessionSettings> {
+    return DataLossError("unreadable");
+  });
+  EXPECT_EQ(failing.Find(id).status().code(), StatusCode::kDataLoss);
+}
+
+}  // namespace
+}  // namespace relmap::session
