@@ -46,7 +46,8 @@ int main(int argc, char** argv) {
   if (!options.port_file.empty()) std::ofstream(options.port_file) << serving->port << '\n';
 
   {
-    const IdleEviction eviction(*registry, options.evict_idle_seconds);
+    const IdleEviction eviction(*registry, options.evict_idle_seconds,
+                                options.session_idle_expiry_seconds);
     {
       const DrainOnSignal drain(stop_signals, *serving->server, options.drain_seconds);
       serving->server->Wait();

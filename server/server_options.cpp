@@ -27,7 +27,7 @@ constexpr std::string_view kUsage =
     "                     [--metrics-port-file PATH] [--frames-per-session 8]\n"
     "                     [--max-concurrent-frames CORES] [--max-queued-frames THREADS/2]\n"
     "                     [--store sqlite:PATH|postgres://...] [--lease-seconds 10]\n"
-    "                     [--drain-seconds 0]\n"
+    "                     [--drain-seconds 0] [--session-idle-expiry-seconds 0]\n"
     "  --listen      address to serve on; port 0 picks a free port\n"
     "  --port-file   write the port actually bound there (for tests and scripts)\n"
     "  --data-dir    keep sessions and samples in DIR/relmap.sqlite (WAL) and restore them\n"
@@ -49,8 +49,10 @@ constexpr std::string_view kUsage =
     "                session, so a restart relearns at most N (default 500; 0 never)\n"
     "  --evict-idle-seconds  with --data-dir: drop sessions unused this long from memory;\n"
     "                they are loaded again on their next call (default 1800; 0 never)\n"
+    "  --session-idle-expiry-seconds  delete sessions unused this long, from memory and\n"
+    "                from the store, one log line each (default 0: sessions never end)\n"
     "  --frames-per-session  frames each session keeps for PostOutcome; an outcome on an\n"
-    "                older one gets FAILED_PRECONDITION (default 8)\n"
+    "                older one gets FAILED_PRECONDITION (default 8, at most 256)\n"
     "  --max-concurrent-frames  calls that process a cloud (ComputeMaps, PostOutcome with\n"
     "                an after cloud) running at once (default: the machine's cores)\n"
     "  --max-queued-frames  such calls waiting for a slot, first come first served (default\n"
@@ -76,6 +78,7 @@ constexpr std::string_view kSettings[] = {"listen",
                                           "tls-cert",
                                           "tls-key",
                                           "evict-idle-seconds",
+                                          "session-idle-expiry-seconds",
                                           "snapshot-every",
                                           "metrics-listen",
                                           "metrics-port-file",
@@ -116,6 +119,8 @@ void Apply(ServerOptions& options, std::string_view name, const std::string& val
     options.tls_key = value;
   } else if (name == "evict-idle-seconds") {
     options.evict_idle_seconds = static_cast<long long>(number());
+  } else if (name == "session-idle-expiry-seconds") {
+    options.session_idle_expiry_seconds = static_cast<long long>(number());
   } else if (name == "max-concurrent-frames") {
     options.max_concurrent_frames = static_cast<std::size_t>(number());
   } else if (name == "max-queued-frames") {
@@ -210,6 +215,14 @@ ServerOptions ParseServerOptions(int argc, char** argv) {
   }
   if (options.lease_seconds < 1) ExitWithError("relmap-server", "--lease-seconds must be >= 1");
   if (options.drain_seconds < 0) ExitWithError("relmap-server", "--drain-seconds must be >= 0");
+  if (options.session_idle_expiry_seconds < 0) {
+    ExitWithError("relmap-server", "--session-idle-expiry-seconds must be >= 0");
+  }
+  // A frame holds its cloud's supervoxels and features (up to max_points points each).
+  if (options.frames_per_session > kMaxFramesPerSession) {
+    ExitWithError("relmap-server", "--frames-per-session must lie in [1, " +
+                                       std::to_string(kMaxFramesPerSession) + "]");
+  }
   if (options.max_concurrent_frames == 0) {
     options.max_concurrent_frames = std::max(1u, std::thread::hardware_concurrency());
   }

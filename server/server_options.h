@@ -7,6 +7,9 @@
 
 namespace relmap::server {
 
+// The most frames a session may keep: each holds its cloud's supervoxels and features.
+inline constexpr std::size_t kMaxFramesPerSession = 256;
+
 struct ServerOptions {
   std::string listen = "127.0.0.1:50051";
   int max_message_mb = 64;
@@ -28,6 +31,8 @@ struct ServerOptions {
   int max_threads = 16;
   std::size_t snapshot_every = 500;
   long long evict_idle_seconds = 1800;
+  // Sessions unused this long are deleted, from memory and from the store (0: never).
+  long long session_idle_expiry_seconds = 0;
   std::size_t max_features_per_request = 100000;
   std::size_t frames_per_session = 8;
   // Calls that process a cloud: running at once (default: the machine's cores) and

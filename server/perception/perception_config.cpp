@@ -103,7 +103,8 @@ Status Validate(const PerceptionConfig& config) {
   }
   // Finer cells than 1 mm are below any depth camera's noise and grow the octree without
   // bound (1e-9 m exhausted memory).
-  if (!(c.octree_resolution >= 1e-3 && c.octree_resolution <= 1.0)) {
+  if (!(c.octree_resolution >= kMinOctreeResolution &&
+        c.octree_resolution <= kMaxOctreeResolution)) {
     return Field("change.octree_resolution", "in [0.001, 1] m");
   }
   if (c.min_points_per_cell < 0) return Field("change.min_points_per_cell", ">= 0");

@@ -8,6 +8,28 @@
 
 namespace relmap::perception {
 
+// The largest |coordinate| a decoded cloud may have, in metres (DecodeLimits).
+inline constexpr float kMaxAbsCoordinate = 100.0f;
+
+// The deepest grid relmap lets a cloud make: GridCellKey packs 21 bits per axis, and
+// PCL's octrees (VCCS's adjacency octree, the change detector's) get one level deeper per
+// halving of the cell, so a resolution is refused up front when a cloud spanning
+// [-kMaxAbsCoordinate, kMaxAbsCoordinate] would need more levels than this.
+inline constexpr int kMaxGridDepth = 21;
+
+// The levels of PCL's octree over a cube of side `extent` with cells of side `resolution`:
+// ceil(log2(extent / resolution)), at least 1 (OctreePointCloud::getKeyBitSize).
+constexpr int OctreeDepth(double extent, double resolution) {
+  int depth = 1;
+  while (static_cast<double>(1LL << depth) * resolution < extent && depth < 62) ++depth;
+  return depth;
+}
+
+// The finest cell that keeps the depth within kMaxGridDepth over the allowed coordinates:
+// 2 * 100 m / 2^21 = 9.54e-5 m. Every resolution's lower bound below is at least this.
+inline constexpr double kFinestGridCell =
+    2.0 * kMaxAbsCoordinate / static_cast<double>(1LL << kMaxGridDepth);
+
 // Bounds checked before any decoded byte reaches PCL (its PCD readers have had heap
 // overflows on malformed files).
 struct DecodeLimits {
@@ -16,7 +38,7 @@ struct DecodeLimits {
   long long max_bytes = 256LL << 20;
   // Points farther than this from the camera are rejected: PCL's octrees grow one level per
   // doubling of the extent, and absurd coordinates (1e30) make them unusable.
-  float max_abs_coordinate = 100.0f;
+  float max_abs_coordinate = kMaxAbsCoordinate;
 };
 
 // Optional workspace crop, in the camera frame (§1: the authors' workbench box was
@@ -73,6 +95,17 @@ inline constexpr float kMaxSeedResolution = 10.0f;
 // The accepted FPFH radii, in metres (Validate).
 inline constexpr float kMinFpfhRadius = 0.005f;
 inline constexpr float kMaxFpfhRadius = 0.5f;
+
+// The accepted octree cells of the change detector (kPaper2018), in metres (Validate).
+inline constexpr double kMinOctreeResolution = 1e-3;
+inline constexpr double kMaxOctreeResolution = 1.0;
+
+// 1 mm cells over 200 m make an 18-level octree; its leaves are at most the cloud's points
+// (DecodeLimits::max_points), its inner nodes at most 18 per leaf.
+static_assert(kMinVoxelResolution >= kFinestGridCell);
+static_assert(kMinOctreeResolution >= kFinestGridCell);
+static_assert(OctreeDepth(2.0 * kMaxAbsCoordinate, kMinOctreeResolution) <= kMaxGridDepth);
+static_assert(OctreeDepth(2.0 * kMaxAbsCoordinate, kFinestGridCell) == kMaxGridDepth);
 
 // §2: 15 colour-histogram values then 33 FPFH values per supervoxel.
 struct FeatureConfig {

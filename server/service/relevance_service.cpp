@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "service/api_limits.h"
 #include "service/call_log.h"
 #include "service/config_mapping.h"
 #include "service/payload_mapping.h"
@@ -59,6 +60,9 @@ grpc::Status RelevanceService::CreateSession(grpc::ServerContext* context,
   return Logged(metrics_, "CreateSession", id, [&] {
     if (Status admin = authorization_.Admin(CredentialsOf(*context)); !admin.ok()) {
       return ToGrpcStatus(admin);
+    }
+    if (Status valid = CheckSessionConfig(request->config(), "config."); !valid.ok()) {
+      return ToGrpcStatus(valid);
     }
     auto settings = SettingsFromProto(request->config());
     if (!settings.ok()) return ToGrpcStatus(settings.status());
@@ -152,6 +156,7 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
   return Logged(metrics_, "PostOutcome", request->session_id(), [&] {
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
+    if (Status valid = CheckEnumValues(*request); !valid.ok()) return ToGrpcStatus(valid);
     StatusOr<session::Outcome> outcome = InvalidArgumentError(
         "the outcome needs a label (LABEL_MOVEABLE or LABEL_NOT_MOVEABLE) or an after_cloud");
     if (request->has_after_cloud()) {
@@ -203,6 +208,7 @@ grpc::Status RelevanceService::AddSamples(grpc::ServerContext* context,
         !limit.ok()) {
       return ToGrpcStatus(limit);
     }
+    if (Status valid = CheckEnumValues(*request); !valid.ok()) return ToGrpcStatus(valid);
     auto rows = LabelledRowsOf(request->samples());
     if (!rows.ok()) return ToGrpcStatus(rows.status());
     auto stats =
@@ -233,6 +239,16 @@ grpc::Status RelevanceService::ImportSession(grpc::ServerContext* context,
   return Logged(metrics_, "ImportSession", id, [&] {
     if (Status admin = authorization_.Admin(CredentialsOf(*context)); !admin.ok()) {
       return ToGrpcStatus(admin);
+    }
+    if (Status limit =
+            CheckFeatureCount(request->state().samples_size(), max_features_per_request_);
+        !limit.ok()) {
+      return ToGrpcStatus(limit);
+    }
+    if (Status valid = CheckEnumValues(*request); !valid.ok()) return ToGrpcStatus(valid);
+    if (Status valid = CheckSessionConfig(request->state().config(), "state.config.");
+        !valid.ok()) {
+      return ToGrpcStatus(valid);
     }
     auto state = StateFromProto(request->state(), max_features_per_request_);
     if (!state.ok()) return ToGrpcStatus(state.status());

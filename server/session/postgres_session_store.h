@@ -91,6 +91,7 @@ class PostgresSessionStore final : public SessionStore {
   // owner and its lease.
   StatusOr<Ownership> AcquireOwnership(std::string_view session_id) override;
   void ReleaseOwnership(std::string_view session_id) override;
+  bool shared() const override { return true; }
 
  private:
   PostgresSessionStore(std::unique_ptr<PostgresConnectionPool> pool,

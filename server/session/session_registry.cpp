@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <mutex>
+#include <optional>
+#include <unordered_set>
 
 #include "session/credentials.h"
 
@@ -97,6 +99,7 @@ StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) 
   (*loaded)->set_policy(policy_);
   std::unique_lock lock(mutex_);
   sessions_.emplace(id, *loaded);
+  stored_last_used_.erase(id);
   return loaded;
 }
 
@@ -155,8 +158,10 @@ std::vector<std::string> SessionRegistry::EvictIdle(std::int64_t cutoff_unix_ms)
   std::unique_lock lock(mutex_);
   for (auto it = sessions_.begin(); it != sessions_.end();) {
     // use_count 1: only the registry holds it, no call is running on it.
-    if (it->second.use_count() == 1 && it->second->Stats().last_used_unix_ms < cutoff_unix_ms) {
+    const std::int64_t last_used = it->second->Stats().last_used_unix_ms;
+    if (it->second.use_count() == 1 && last_used < cutoff_unix_ms) {
       evicted.push_back(it->first);
+      if (!store_->shared()) stored_last_used_[it->first] = last_used;  // for ExpireIdle
       it = sessions_.erase(it);
     } else {
       ++it;
@@ -166,6 +171,55 @@ std::vector<std::string> SessionRegistry::EvictIdle(std::int64_t cutoff_unix_ms)
   // Another server may take an evicted session at once rather than after its hold expires.
   for (const std::string& id : evicted) store_->ReleaseOwnership(id);
   return evicted;
+}
+
+std::vector<std::string> SessionRegistry::ExpireIdle(std::int64_t cutoff_unix_ms,
+                                                     std::int64_t now_unix_ms) {
+  std::vector<std::string> expired;
+  // Only sessions in memory here when other servers share the store: the last use of
+  // the others is theirs to know, and a lease that ran out says nothing of it.
+  std::optional<std::unordered_set<std::string>> stored_ids;
+  if (store_ != nullptr && !store_->shared()) {
+    if (auto stored = store_->ListSessions(); stored.ok()) {
+      stored_ids.emplace();
+      for (const SessionSummary& summary : *stored) stored_ids->insert(summary.id);
+    }
+  }
+  // Owned before it is deleted: a session in memory here that another server has served
+  // since is not idle.
+  const auto owned_here = [&](const std::string& id) {
+    if (store_ == nullptr) return true;
+    auto ownership = store_->AcquireOwnership(id);
+    return ownership.ok() && ownership->held_throughout;
+  };
+  const auto deleted = [&](const std::string& id) {
+    return store_ == nullptr || store_->DeleteSession(id).ok();
+  };
+  std::unique_lock lock(mutex_);
+  for (auto it = sessions_.begin(); it != sessions_.end();) {
+    // use_count 1: only the registry holds it, no call is running on it.
+    if (it->second.use_count() == 1 && it->second->Stats().last_used_unix_ms < cutoff_unix_ms &&
+        owned_here(it->first) && deleted(it->first)) {
+      expired.push_back(it->first);
+      it = sessions_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  if (!stored_ids) return expired;
+  // Forget the ids the store no longer has (deleted by a call or by another server).
+  std::erase_if(stored_last_used_,
+                [&](const auto& entry) { return stored_ids->count(entry.first) == 0; });
+  for (const std::string& id : *stored_ids) {
+    if (sessions_.count(id) != 0) continue;
+    const auto [it, first_seen] = stored_last_used_.try_emplace(id, now_unix_ms);
+    if (first_seen || it->second >= cutoff_unix_ms) continue;
+    if (deleted(id)) {
+      expired.push_back(id);
+      stored_last_used_.erase(it);
+    }
+  }
+  return expired;
 }
 
 void SessionRegistry::ReleaseAll() {
@@ -187,6 +241,7 @@ Status SessionRegistry::Delete(const std::string& id) {
     return NotFoundError("no session '" + id + "'");
   }
   sessions_.erase(id);
+  stored_last_used_.erase(id);
   return OkStatus();
 }
 

@@ -48,6 +48,14 @@ class SessionRegistry {
   // and that were last used before `cutoff_unix_ms`; returns their ids. They
   // are loaded again on their next call.
   std::vector<std::string> EvictIdle(std::int64_t cutoff_unix_ms);
+  // Deletes, from memory and from the store, the sessions that no call holds and that
+  // were last used before `cutoff_unix_ms` (a session that ends; EvictIdle only unloads).
+  // A resident session's last use is its last call; an evicted one's, the last call
+  // before its eviction; a stored one this registry has not had in memory (after a
+  // restart) counts as used at the first call of ExpireIdle that sees it (`now_unix_ms`).
+  // With a store that other servers share, only sessions in memory here, held here
+  // since their last call, are deleted. Returns the ids of the deleted sessions.
+  std::vector<std::string> ExpireIdle(std::int64_t cutoff_unix_ms, std::int64_t now_unix_ms);
   SessionStore* store() const { return store_; }
   // The policy given to every session created or adopted from now on.
   void set_policy(const SessionPolicy& policy) { policy_ = policy; }
@@ -93,6 +101,8 @@ class SessionRegistry {
   std::mutex load_mutex_;  // one load at a time, so an id is never loaded twice
   mutable std::shared_mutex mutex_;
   std::unordered_map<std::string, std::shared_ptr<Session>> sessions_;
+  // Last use of the stored sessions not in memory that ExpireIdle has seen (unix ms).
+  std::unordered_map<std::string, std::int64_t> stored_last_used_;
 };
 
 }  // namespace relmap::session

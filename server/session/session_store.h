@@ -80,6 +80,9 @@ class SessionStore {
   // deletion, a draining server). Best effort: a lost release only delays a takeover
   // until the hold expires.
   virtual void ReleaseOwnership(std::string_view session_id) { (void)session_id; }
+  // Whether other servers may use the sessions too: then only the server that holds a
+  // session knows when it was last used.
+  virtual bool shared() const { return false; }
 };
 
 }  // namespace relmap::session

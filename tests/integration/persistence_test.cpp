@@ -183,6 +183,41 @@ TEST(Persistence, IdleSessionsLeaveMemoryAndComeBackOnTheirNextCall) {
   std::remove(metrics_port_file.c_str());
 }
 
+grpc::StatusCode GetSessionCode(RelevanceService::Stub& stub, const TrainedSession& session) {
+  grpc::ClientContext context;
+  Authorise(context, session.token);
+  v1::GetSessionRequest request;
+  request.set_session_id(session.id);
+  v1::GetSessionResponse response;
+  return stub.GetSession(&context, request, &response).error_code();
+}
+
+TEST(Persistence, SessionsIdleLongerThanTheExpiryAreDeletedFromMemoryAndStore) {
+  const std::string dir = ::testing::TempDir() + "/relmap_expiry_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  {
+    testing::ServerProcess server({"--data-dir", dir, "--session-idle-expiry-seconds", "2"});
+    auto stub = RelevanceService::NewStub(server.Channel());
+    const TrainedSession idle = CreateTrainedSession(*stub, 0);
+    const TrainedSession busy = CreateTrainedSession(*stub, 1);
+    // The busy session is used every 0.5 s (its lastUsedUnixMs), the idle one not at all,
+    // for 4 s: past the 2 s expiry and its check every second.
+    for (int i = 0; i < 8; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      EXPECT_EQ(Classify(*stub, busy.id, busy.token).relevance_size(), 21) << i;
+    }
+    EXPECT_EQ(GetSessionCode(*stub, busy), grpc::StatusCode::OK);
+    EXPECT_EQ(GetSessionCode(*stub, idle), grpc::StatusCode::NOT_FOUND);
+    EXPECT_EQ(server.Stop(), 0);
+  }
+  auto opened = session::SqliteSessionStore::Open(dir + "/relmap.sqlite");
+  ASSERT_TRUE(opened.ok()) << opened.status().message();
+  auto stored = (*opened)->ListSessions();
+  ASSERT_TRUE(stored.ok());
+  EXPECT_EQ(stored->size(), 1u);  // the busy one
+  std::filesystem::remove_all(dir);
+}
+
 TEST(ExportImport, AnImportedSessionPredictsBitForBitLikeTheOriginal) {
   testing::ServerProcess server;
   auto stub = RelevanceService::NewStub(server.Channel());

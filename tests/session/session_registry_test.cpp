@@ -212,6 +212,58 @@ TEST_F(StoredRegistry, ADeletedSessionIsGoneFromTheStoreToo) {
   EXPECT_EQ(store_->LoadSession(id).status().code(), StatusCode::kNotFound);
 }
 
+// Times are the clock the registry is given (unix ms): sessions created at 0, used at 10.
+TEST(SessionExpiry, ASessionIdleSinceBeforeTheCutoffIsDeleted) {
+  SessionRegistry registry(4);
+  const std::string idle = CreateOne(registry);
+  auto used = registry.Create(FeatureSettings(), "config", 100);
+  ASSERT_TRUE(used.ok());
+  const std::string recent = used->session->id();
+  used->session.reset();
+  EXPECT_EQ(registry.ExpireIdle(50, 1000), std::vector<std::string>{idle});
+  EXPECT_EQ(registry.Find(idle).status().code(), StatusCode::kNotFound);
+  EXPECT_TRUE(registry.Find(recent).ok());
+}
+
+TEST(SessionExpiry, ASessionACallHoldsIsNotDeleted) {
+  SessionRegistry registry(4);
+  const std::string id = CreateOne(registry);
+  auto held = registry.Find(id);
+  ASSERT_TRUE(held.ok());
+  EXPECT_TRUE(registry.ExpireIdle(1'000'000, 1'000'000).empty());
+  held->reset();
+  EXPECT_EQ(registry.ExpireIdle(1'000'000, 1'000'000), std::vector<std::string>{id});
+}
+
+TEST_F(StoredRegistry, AnExpiredSessionIsGoneFromTheStoreToo) {
+  const std::string id = CreateOne(*registry_);
+  EXPECT_EQ(registry_->ExpireIdle(50, 1000), std::vector<std::string>{id});
+  EXPECT_EQ(store_->LoadSession(id).status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(registry_->Find(id).status().code(), StatusCode::kNotFound);
+}
+
+TEST_F(StoredRegistry, AnEvictedSessionExpiresByItsLastCallBeforeTheEviction) {
+  const std::string id = CreateOne(*registry_);  // last used at 0
+  ASSERT_EQ(registry_->EvictIdle(20), std::vector<std::string>{id});
+  EXPECT_TRUE(registry_->ExpireIdle(0, 1000).empty());  // used at 0: not before 0
+  EXPECT_EQ(registry_->ExpireIdle(1, 1000), std::vector<std::string>{id});
+  EXPECT_EQ(store_->LoadSession(id).status().code(), StatusCode::kNotFound);
+}
+
+// After a restart the registry has no last use of a stored session: it counts from the
+// first sweep that sees it.
+TEST_F(StoredRegistry, AStoredSessionNotYetLoadedExpiresCountingFromTheFirstSweep) {
+  const std::string id = CreateOne(*registry_);
+  registry_->ReleaseAll();  // as after a restart: in the store, not in memory
+  SessionRegistry restarted(8, store_.get(), [](const SessionRecord&) -> StatusOr<SessionSettings> {
+    return FeatureSettings();
+  });
+  EXPECT_TRUE(restarted.ExpireIdle(5000, 5000).empty());  // first seen at 5000
+  EXPECT_TRUE(restarted.ExpireIdle(5000, 6000).empty());  // not before 5000
+  EXPECT_EQ(restarted.ExpireIdle(5001, 7000), std::vector<std::string>{id});
+  EXPECT_EQ(store_->LoadSession(id).status().code(), StatusCode::kNotFound);
+}
+
 TEST_F(StoredRegistry, ASettingsDecoderErrorIsTheLookupsError) {
   const std::string id = CreateOne(*registry_);
   registry_->ReleaseAll();
