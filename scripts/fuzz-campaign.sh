@@ -2,7 +2,7 @@
 # A timed libFuzzer campaign over the targets of tests/fuzz (docs/reliability.md
 # "Fuzzing"): installs clang, builds the targets with ASan + UBSan in build-fuzz/,
 # runs each for --seconds from its seed corpus and prints what it did.
-#   scripts/fuzz-campaign.sh [--seconds N] [--jobs J] [--no-install] [target...]
+#   scripts/fuzz-campaign.sh [--seconds N] [--jobs J] [--no-install] [--no-build] [target...]
 # Default: every target, 60 s each, the PCL-free ones first. New corpus units go to
 # out/fuzz/<target>/corpus (the committed seeds stay as they are), crashers,
 # timeouts and OOMs to out/fuzz/<target>/, the fuzzer's log to out/fuzz/<target>/log.
@@ -12,13 +12,15 @@ cd "$(dirname "$0")/.."
 seconds=60
 jobs=2
 install=1
+build=1
 targets=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) seconds="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
     --no-install) install=0; shift ;;
-    -h|--help) sed -n 2,8p "$0"; exit 0 ;;
+    --no-build) build=0; install=0; shift ;;  # run the targets build-fuzz/ has
+    -h|--help) sed -n 2,9p "$0"; exit 0 ;;
     -*) echo "fuzz-campaign: unknown option $1" >&2; exit 2 ;;
     *) targets+=("$1"); shift ;;
   esac
@@ -40,15 +42,17 @@ max_len_of() {
 
 if [ "$install" -eq 1 ]; then ./scripts/install-deps.sh clang; fi
 
-# -O1 and line tables only, as OSS-Fuzz builds: the sanitized Eigen and PCL code
-# compiles in a fraction of -O2 -g's time, and stacks still name file:line.
-sanitizers="-O1 -gline-tables-only -fno-omit-frame-pointer"
-sanitizers+=" -fsanitize=fuzzer-no-link,address,undefined"
-nice -n 5 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Fuzz \
-  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_C_FLAGS="$sanitizers" -DCMAKE_CXX_FLAGS="$sanitizers" \
-  -DRELMAP_FUZZ=ON -DRELMAP_BUILD_TESTS=OFF -DRELMAP_BUILD_BENCHMARKS=OFF >/dev/null
-nice -n 5 cmake --build build-fuzz -j "$jobs" --target "${targets[@]/%/_fuzz}"
+if [ "$build" -eq 1 ]; then
+  # -O1 and line tables only, as OSS-Fuzz builds: the sanitized Eigen and PCL code
+  # compiles in a fraction of -O2 -g's time, and stacks still name file:line.
+  sanitizers="-O1 -gline-tables-only -fno-omit-frame-pointer"
+  sanitizers+=" -fsanitize=fuzzer-no-link,address,undefined"
+  nice -n 5 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Fuzz \
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+    -DCMAKE_C_FLAGS="$sanitizers" -DCMAKE_CXX_FLAGS="$sanitizers" \
+    -DRELMAP_FUZZ=ON -DRELMAP_BUILD_TESTS=OFF -DRELMAP_BUILD_BENCHMARKS=OFF >/dev/null
+  nice -n 5 cmake --build build-fuzz -j "$jobs" --target "${targets[@]/%/_fuzz}"
+fi
 
 # Leaks are reported per input; UB stops the run like a crash; PCL's OpenMP on one thread.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"

@@ -13,6 +13,9 @@
 
 namespace {
 
+// The widest feature vector a session accepts (session/session_settings.cpp).
+constexpr int kMaxFeatureDimension = 4096;
+
 // The blob as the store keeps it: `body` and its CRC-32 (zlib's), little endian.
 std::string WithChecksum(const std::uint8_t* body, std::size_t size) {
   std::string blob(reinterpret_cast<const char*>(body), size);
@@ -29,7 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   auto model = relmap::cmm::CollaborativeMixtureModels::Restore(*snapshot);
   if (!model.ok()) return 0;
   const int p = model->dimension();
-  if (p > 0) model->Predict(Eigen::MatrixXd::Zero(1, p));
+  if (p > 0 && p <= kMaxFeatureDimension) model->Predict(Eigen::MatrixXd::Zero(1, p));
   // What decoded encodes again, and that decodes.
   const auto again = relmap::session::EncodeSnapshot(*snapshot);
   if (again.ok() && !relmap::session::DecodeSnapshot(*again).ok()) __builtin_trap();
