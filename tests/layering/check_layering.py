@@ -24,7 +24,7 @@ INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 SERVER_TESTS = ("tests/unit/", "tests/perception/", "tests/session/", "tests/integration/",
                 "tests/benchmarks/cmm_benchmark", "tests/benchmarks/session_store",
                 "tests/benchmarks/durable_samples", "tests/benchmarks/perception/",
-                "tests/support/", "tests/cluster/")
+                "tests/support/", "tests/cluster/", "tests/fuzz/")
 BELOW_SERVICE = ("common/", "server/cmm/", "server/perception/", "server/exploration/",
                  "server/session/")
 
