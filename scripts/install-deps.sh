@@ -6,7 +6,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build pkgconf git clang-format
+  build-essential cmake ninja-build pkgconf git clang-format clang-tidy
   libeigen3-dev libboost-math-dev
   libpcl-dev
   libgrpc++-dev protobuf-compiler-grpc protobuf-compiler libprotobuf-dev
