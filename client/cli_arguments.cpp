@@ -61,7 +61,10 @@ CommandLine::CommandLine(int argc, char** argv, int first) {
 
 void CommandLine::Expect(std::initializer_list<const char*> allowed,
                          std::size_t max_positional) const {
-  for (const auto& [flag, value] : flags_) {
+  for (const auto& entry : flags_) {
+    // A named reference, not a structured binding: clang before 16 (clang-tidy's
+    // parser here) cannot capture a binding in a lambda.
+    const std::string& flag = entry.first;
     const auto is = [&](const char* name) { return flag == name; };
     if (std::none_of(allowed.begin(), allowed.end(), is) &&
         std::none_of(std::begin(kGlobalFlags), std::end(kGlobalFlags), is)) {

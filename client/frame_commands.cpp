@@ -56,7 +56,7 @@ int RunOutcome(const CommandLine& args) {
     return PrintAnswer(
         client->PostOutcome(session, frame, supervoxel, after, request_id, &response), response);
   }
-  const std::string outcome = args.Positional(3, "moved|still");
+  const std::string& outcome = args.Positional(3, "moved|still");
   if (outcome != "moved" && outcome != "still") {
     UsageError("the outcome is moved or still, not '" + outcome + "'");
   }

@@ -3,12 +3,12 @@
 #include "local_server.h"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -16,8 +16,6 @@
 #include <iterator>
 #include <thread>
 #include <utility>
-
-extern char** environ;
 
 namespace relmap::client {
 namespace {
@@ -54,6 +52,7 @@ StatusOr<std::unique_ptr<LocalServer>> LocalServer::Start(const std::string& bin
   if (!options.memory_only) arguments.insert(arguments.end(), {"--data-dir", *directory + "/data"});
   arguments.insert(arguments.end(), options.extra_arguments.begin(), options.extra_arguments.end());
   std::vector<char*> argv;
+  argv.reserve(arguments.size() + 1);
   for (std::string& argument : arguments) argv.push_back(argument.data());
   argv.push_back(nullptr);
 
@@ -78,8 +77,12 @@ StatusOr<std::unique_ptr<LocalServer>> LocalServer::Start(const std::string& bin
     int status = 0;
     if (::waitpid(pid, &status, WNOHANG) == pid) {
       server->pid_ = -1;
-      return Status(StatusCode::kUnavailable, binary + " exited at start-up; " + log_path +
-                                                  " ends:\n" + server->LogTail(2000));
+      std::string why = binary;
+      why += " exited at start-up; ";
+      why += log_path;
+      why += " ends:\n";
+      why += server->LogTail(2000);
+      return Status(StatusCode::kUnavailable, why);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }

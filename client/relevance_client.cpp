@@ -70,7 +70,7 @@ grpc::Status RelevanceClient::Retrying(
     grpc::ClientContext context;
     context.set_deadline(deadline);
     for (const auto& [key, value] : metadata) context.AddMetadata(key, value);
-    const grpc::Status status = attempt(context);
+    grpc::Status status = attempt(context);
     const std::optional<std::chrono::milliseconds> pushback = PushbackOf(context);
     if (status.ok() || !IsRetryable(status, idempotence, pushback.has_value())) return status;
     if (!pushback && ++attempts >= options_.retry.max_attempts) return status;
@@ -98,8 +98,7 @@ grpc::Status RelevanceClient::StartSession(Rpc<Request, Response> rpc, const Req
                                            SessionHandle* session, Response* response) {
   Response local;
   Response* out = response != nullptr ? response : &local;
-  const grpc::Status status =
-      Invoke(rpc, request, out, Idempotence::kNotIdempotent, AdminMetadata());
+  grpc::Status status = Invoke(rpc, request, out, Idempotence::kNotIdempotent, AdminMetadata());
   if (status.ok()) *session = {out->session_id(), out->session_token()};
   return status;
 }
@@ -254,7 +253,7 @@ grpc::Status RelevanceClient::CheckHealth(const std::string& service,
       [&](grpc::ClientContext& context) {
         std::promise<grpc::Status> done;
         health.UnaryCall(&context, "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
-                         response, [&done](grpc::Status status) { done.set_value(status); });
+                         response, [&done](const grpc::Status& status) { done.set_value(status); });
         return done.get_future().get();
       },
       Idempotence::kIdempotent, {});

@@ -18,7 +18,7 @@ StatusOr<std::string> FindServerBinary(const std::string& flag) {
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
   if (!error) candidates.push_back((self.parent_path() / "relmap-server").string());
 #ifdef RELMAP_SERVER_BINARY
-  candidates.push_back(RELMAP_SERVER_BINARY);
+  candidates.emplace_back(RELMAP_SERVER_BINARY);
 #endif
   std::string looked;
   for (const std::string& candidate : candidates) {

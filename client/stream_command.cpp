@@ -38,7 +38,7 @@ v1::AddSamplesRequest Batch(const datasets::LabelledSamples& samples, Eigen::Ind
 int RunStream(const CommandLine& args) {
   args.Expect({"batch"}, 2);
   const SessionHandle session = SessionFrom(args, 0);
-  const std::string path = args.Positional(1, "samples.csv");
+  const std::string& path = args.Positional(1, "samples.csv");
   const std::string bytes = ReadFileOrExit(path);
   std::istringstream in(bytes);
   const StatusOr<datasets::LabelledSamples> samples = datasets::ParseLabelledCsv(in, path);

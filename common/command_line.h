@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <string>
 #include <string_view>
 
@@ -24,6 +25,23 @@ inline double ParseNumberOrExit(std::string_view program, std::string_view flag,
     ExitWithError(program, std::string(flag) + " expects a number, got '" + text + "'");
   }
   return value;
+}
+
+// `body()`'s exit code, or 1 with "<program>: <what>" on standard error when it throws:
+// a program's main runs its work through this, so that an exception nobody expected
+// (std::bad_alloc, a library's error) ends it with a message rather than std::terminate.
+template <typename Body>
+int ExitCodeOf(std::string_view program, Body&& body) noexcept {
+  try {
+    return body();
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "%.*s: %s\n", static_cast<int>(program.size()), program.data(),
+                 error.what());
+  } catch (...) {
+    std::fprintf(stderr, "%.*s: unknown exception\n", static_cast<int>(program.size()),
+                 program.data());
+  }
+  return 1;
 }
 
 }  // namespace relmap::tools

@@ -68,15 +68,15 @@ StatusOr<PushOutcome> ParseDriverResult(const std::string& json) {
   } else if (result.result() == "unreachable") {
     outcome.result = PushResult::kUnreachable;
   } else {
-    return InvalidArgumentError("driver answer: \"result\" must be \"done\", \"failed\" or " +
-                                std::string("\"unreachable\", not \"") + result.result() + "\"");
+    return InvalidArgumentError(R"(driver answer: "result" must be "done", "failed" or )" +
+                                std::string(R"("unreachable", not ")") + result.result() + "\"");
   }
   if (result.label() == "moved") {
     outcome.label = v1::LABEL_MOVEABLE;
   } else if (result.label() == "still") {
     outcome.label = v1::LABEL_NOT_MOVEABLE;
   } else if (!result.label().empty()) {
-    return InvalidArgumentError("driver answer: \"label\" must be \"moved\" or \"still\", not \"" +
+    return InvalidArgumentError(R"(driver answer: "label" must be "moved" or "still", not ")" +
                                 result.label() + "\"");
   }
   if (outcome.label && outcome.result != PushResult::kDone) {

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "common/command_line.h"
 #include "directory_source.h"
 #include "exec_driver.h"
 #include "exploration_loop.h"
@@ -223,7 +224,9 @@ int Replay(const std::vector<std::string>& args) {
 }  // namespace
 }  // namespace relmap::robot
 
-int main(int argc, char** argv) {
+namespace {
+
+int Main(int argc, char** argv) {
   if (argc < 2) return relmap::robot::Usage();
   const std::string command = argv[1];
   if (command == "--help" || command == "-h") return relmap::robot::Usage(/*asked=*/true);
@@ -231,4 +234,10 @@ int main(int argc, char** argv) {
   if (command == "run") return relmap::robot::Run(args);
   if (command == "replay") return relmap::robot::Replay(args);
   return relmap::robot::Usage();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return relmap::tools::ExitCodeOf("relmap-robot", [&] { return Main(argc, argv); });
 }

@@ -19,7 +19,7 @@ Status Invalid(const std::string& label, const std::string& what) {
 
 Status Validate(const RobotConfig& config, const std::string& label) {
   if (config.source().kind_case() == SourceConfig::KIND_NOT_SET) {
-    return Invalid(label, "source: set \"directory\", \"stdin\", \"tcp\", \"openni2\" or \"sim\"");
+    return Invalid(label, R"(source: set "directory", "stdin", "tcp", "openni2" or "sim")");
   }
   if (config.source().has_tcp() && config.source().tcp().listen().empty()) {
     return Invalid(label, "source.tcp.listen is empty (host:port, e.g. \"0.0.0.0:5000\")");
@@ -36,7 +36,7 @@ Status Validate(const RobotConfig& config, const std::string& label) {
     return Invalid(label, "source.sim.scene is empty");
   }
   if (config.driver().kind_case() == DriverConfig::KIND_NOT_SET) {
-    return Invalid(label, "driver: set \"exec\", \"tcp_json\" or \"sim\"");
+    return Invalid(label, R"(driver: set "exec", "tcp_json" or "sim")");
   }
   if (config.driver().has_sim() && !config.source().has_sim()) {
     return Invalid(label, "driver.sim pushes in the simulator: it needs source.sim");

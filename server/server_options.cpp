@@ -1,6 +1,8 @@
 // Parsing and validation of relmap-server's settings.
 #include "server_options.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -188,7 +190,7 @@ ServerOptions ParseServerOptions(int argc, char** argv) {
       if (!(words >> key)) continue;  // blank or comment
       if (!(words >> setting)) {
         ExitWithError("relmap-server",
-                      value + ":" + std::to_string(number) + ": '" + key + "' needs a value");
+                      fmt::format("{}:{}: '{}' needs a value", value, number, key));
       }
       Apply(options, key, setting);
     }

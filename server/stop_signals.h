@@ -2,7 +2,7 @@
 // must never receive them, or the process would die instead of draining.
 #pragma once
 
-#include <signal.h>
+#include <csignal>
 
 namespace relmap::server {
 

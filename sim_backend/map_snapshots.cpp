@@ -22,7 +22,11 @@ Status WriteMapSnapshots(const CameraFrame& frame, const v1::ComputeMapsResponse
   suffix += std::to_string(iteration);
   for (const auto& [kind, name] : {std::pair{client::MapKind::kRelevance, "relevance"},
                                    std::pair{client::MapKind::kChoice, "choice"}}) {
-    const std::string path = directory + "/" + name + suffix + ".png";
+    std::string path = directory;
+    path += '/';
+    path += name;
+    path += suffix;
+    path += ".png";
     if (Status written = client::WriteMapPng(frame.width, frame.height, points, maps, kind, path);
         !written.ok()) {
       return Status(written.code(), path + ": " + written.message());

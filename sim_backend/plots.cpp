@@ -26,7 +26,7 @@ image::Series SeriesOf(const std::vector<ReplicationResult>& replications, const
 }
 
 Status Plot(const std::string& path, const std::string& title, const std::string& y_label,
-            std::optional<double> y_max, std::vector<image::Series> series) {
+            std::optional<double> y_max, const std::vector<image::Series>& series) {
   image::PlotOptions options;
   options.title = title;
   options.x_label = "iteration";

@@ -35,6 +35,7 @@ std::vector<double> ApproachAngles(SeededRandom& random) {
     std::swap(order[i], order[random.Below(static_cast<std::uint64_t>(i) + 1)]);
   }
   std::vector<double> angles;
+  angles.reserve(order.size());
   for (int k : order) angles.push_back(offset + kTwoPi * k / kDirections);
   return angles;
 }

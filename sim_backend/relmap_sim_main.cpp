@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "common/command_line.h"
 #include "sim_commands.h"
 
 namespace {
@@ -26,9 +27,7 @@ int NotBuiltYet(const char* command) {
 }
 #endif
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   const std::string_view command = argc >= 2 ? argv[1] : "";
   if (command == "run") return relmap::sim::RunExperimentCommand(argc - 1, argv + 1);
   if (command == "dataset") return relmap::sim::RunDatasetCommand(argc - 1, argv + 1);
@@ -46,4 +45,10 @@ int main(int argc, char** argv) {
   }
   std::fprintf(stderr, "%s%s", command.empty() ? "" : "relmap-sim: unknown command\n", kUsage);
   return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return relmap::tools::ExitCodeOf("relmap-sim", [&] { return Main(argc, argv); });
 }

@@ -5,6 +5,7 @@
 // (["relmap-sim", "render", "--scene", ...] or ["render", "--scene", ...]): words
 // before the first flag are skipped.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -77,7 +78,8 @@ bool ParseUnsigned(const std::string& text, std::uint64_t max, std::uint64_t* va
 
 image::Rgb Blend(const image::Rgb& a, const image::Rgb& b, double t) {
   image::Rgb out;
-  for (int i = 0; i < 3; ++i) out[i] = static_cast<std::uint8_t>((1 - t) * a[i] + t * b[i] + 0.5);
+  for (int i = 0; i < 3; ++i)
+    out[i] = static_cast<std::uint8_t>(std::lround((1 - t) * a[i] + t * b[i]));
   return out;
 }
 

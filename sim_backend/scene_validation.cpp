@@ -371,7 +371,7 @@ void CheckCamera(Checker& check, const Camera& camera) {
   const bool ideal = camera.sensor() == "ideal";
   if (!ideal && !camera.sensor().empty() && camera.sensor() != "kinect_v1") {
     check.Fail(path + ".sensor",
-               "must be \"kinect_v1\" or \"ideal\", got \"" + camera.sensor() + "\"");
+               R"(must be "kinect_v1" or "ideal", got ")" + camera.sensor() + "\"");
   }
   if (camera.has_depth_noise_sigma()) {
     check.NotAllowed(path + ".depth_noise_sigma", !ideal,
@@ -439,7 +439,7 @@ Status ValidateScene(const Scene& scene, const std::string& file_label) {
   if (scene.objects_size() == 0) {
     check.Missing("objects", "a scene needs at least one moveable object");
   }
-  std::size_t body_count = static_cast<std::size_t>(scene.static_bodies_size());
+  auto body_count = static_cast<std::size_t>(scene.static_bodies_size());
   for (int i = 0; i < scene.objects_size(); ++i) {
     CheckBody(check, Index("objects", static_cast<std::size_t>(i)), scene.objects(i),
               BodyRole::kObject, /*moveable=*/true);

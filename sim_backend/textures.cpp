@@ -68,7 +68,7 @@ double Checker(const Eigen::Vector3d& p, double scale) {
 }  // namespace
 
 Eigen::Vector3d Albedo(const Material& material, const Eigen::Vector3d& local) {
-  const Eigen::Vector3d base = ToUnit(material.color);
+  Eigen::Vector3d base = ToUnit(material.color);
   double t = 0;
   switch (material.texture) {
     case TextureKind::kNone:

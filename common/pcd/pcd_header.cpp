@@ -7,7 +7,7 @@
 namespace relmap::pcd {
 namespace {
 
-constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
+constexpr std::size_t kMaxHeaderBytes = std::size_t{64} * 1024;
 constexpr std::size_t kMaxFields = 256;
 constexpr int kMaxCount = 4096;  // elements per field: a 4 KiB histogram is already huge
 

@@ -146,7 +146,7 @@ StatusOr<std::vector<Point>> DecodeAsciiBody(const Header& h, std::string_view b
         return InvalidArgumentError(where + ": colour '" + std::string(tokens[cc]) +
                                     "' is not a number");
       }
-      const float f = static_cast<float>(d);
+      const auto f = static_cast<float>(d);
       std::memcpy(&packed, &f, 4);
     } else {
       long long value = 0;

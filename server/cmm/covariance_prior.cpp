@@ -88,7 +88,7 @@ Eigen::MatrixXd ShrunkCovariance(const Eigen::MatrixXd& scatter, int dof, double
 }  // namespace
 
 Eigen::MatrixXd OracleApproximatingShrinkage(const Eigen::MatrixXd& s, double n) {
-  const double p = static_cast<double>(s.rows());
+  const auto p = static_cast<double>(s.rows());
   const double trace = s.trace();
   const double trace_of_square = s.squaredNorm();  // tr(s²) = ‖s‖²_F for symmetric s
   const double numerator = (1.0 - 2.0 / p) * trace_of_square + trace * trace;

@@ -13,7 +13,7 @@ namespace {
 
 Status CheckComponent(const ComponentSnapshot& c, int label, const CmmSnapshot& s,
                       std::vector<int>& owner) {
-  const std::size_t p = static_cast<std::size_t>(s.dimension);
+  const auto p = static_cast<std::size_t>(s.dimension);
   const std::string where = "class " + std::to_string(label) + " component: ";
   if (c.samples.empty()) return DataLossError(where + "has no sample");
   if (c.mean.size() != p || c.scatter.size() != p * p) {

@@ -36,6 +36,11 @@ constexpr int kBlock = 16;  // points per block of the bulk
   return v;
 }
 
+// The v-th group of kLanes doubles from `p`.
+[[gnu::always_inline]] inline Lanes LoadGroup(const double* p, int v) {
+  return Load(p + static_cast<std::ptrdiff_t>(v) * kLanes);
+}
+
 // Last column of row i that can be non-zero.
 [[gnu::always_inline]] inline int RowEnd(const WhiteningView& w, int i) {
   return w.lower_triangular ? i + 1 : w.dimension;
@@ -57,8 +62,10 @@ template <int Vectors>
     for (int k = 0; k < p; ++k) {
       const double* column = points + static_cast<std::ptrdiff_t>(k) * stride + first;
       for (int v = 0; v < Vectors; ++v) {
-        const Lanes x = Load(column + v * kLanes) - w.centre[k];
-        std::memcpy(&centred[static_cast<std::size_t>(k * kPoints + v * kLanes)], &x, sizeof x);
+        const Lanes x = LoadGroup(column, v) - w.centre[k];
+        std::memcpy(
+            &centred[static_cast<std::size_t>(k) * kPoints + static_cast<std::size_t>(v) * kLanes],
+            &x, sizeof x);
       }
     }
     Lanes sum[Vectors] = {};
@@ -73,14 +80,14 @@ template <int Vectors>
       for (int k = 0; k < end_a; ++k) {
         const double* x = &centred[static_cast<std::size_t>(k) * kPoints];
         for (int v = 0; v < Vectors; ++v) {
-          const Lanes xv = Load(x + v * kLanes);
+          const Lanes xv = LoadGroup(x, v);
           a[v] += row_a[k] * xv;
           b[v] += row_b[k] * xv;
         }
       }
       for (int k = end_a; k < end_b; ++k) {
         const double* x = &centred[static_cast<std::size_t>(k) * kPoints];
-        for (int v = 0; v < Vectors; ++v) b[v] += row_b[k] * Load(x + v * kLanes);
+        for (int v = 0; v < Vectors; ++v) b[v] += row_b[k] * LoadGroup(x, v);
       }
       for (int v = 0; v < Vectors; ++v) sum[v] += a[v] * a[v];
       for (int v = 0; v < Vectors; ++v) sum[v] += b[v] * b[v];
@@ -90,7 +97,7 @@ template <int Vectors>
       Lanes a[Vectors] = {};
       for (int k = 0; k < RowEnd(w, i); ++k) {
         const double* x = &centred[static_cast<std::size_t>(k) * kPoints];
-        for (int v = 0; v < Vectors; ++v) a[v] += row[k] * Load(x + v * kLanes);
+        for (int v = 0; v < Vectors; ++v) a[v] += row[k] * LoadGroup(x, v);
       }
       for (int v = 0; v < Vectors; ++v) sum[v] += a[v] * a[v];
     }
@@ -125,7 +132,7 @@ void SquaredWhitenedDistances(const WhiteningView& whitening, const double* poin
     std::fill(padded.begin(), padded.end(), 0.0);
     for (int k = 0; k < p; ++k) {
       for (int j = 0; j < n; ++j) {
-        padded[static_cast<std::size_t>(k * kLanes + j)] =
+        padded[static_cast<std::size_t>(k) * kLanes + static_cast<std::size_t>(j)] =
             points[static_cast<std::ptrdiff_t>(k) * stride + first + j];
       }
     }

@@ -6,6 +6,7 @@
 #include <pcl/search/kdtree.h>
 
 #include <limits>
+#include <memory>
 
 #include "perception/fpfh.h"
 
@@ -35,8 +36,7 @@ Eigen::MatrixXd SupervoxelFpfhExactUnion(const Segmentation& segmentation, float
     pcl::FPFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::FPFHSignature33> estimation;
     estimation.setInputCloud(cloud);
     estimation.setInputNormals(cloud_normals);
-    estimation.setSearchMethod(
-        pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+    estimation.setSearchMethod(std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>());
     estimation.setRadiusSearch(radius);
     pcl::PointCloud<pcl::FPFHSignature33> histograms;
     estimation.compute(histograms);

@@ -38,7 +38,7 @@ void PairBatch::Compute() {
   // vectorising the loop.
   alignas(16) int fast[kPairBatch];  // 1: the fast path decided this lane
   alignas(16) PairCode code[kPairBatch];
-  const float half_pi = static_cast<float>(M_PI_2), pi = static_cast<float>(M_PI);
+  const auto half_pi = static_cast<float>(M_PI_2), pi = static_cast<float>(M_PI);
   for (int l = 0; l < size_; ++l) {
     const float dx = p2_[0][l] - p1_[0][l], dy = p2_[1][l] - p1_[1][l], dz = p2_[2][l] - p1_[2][l];
     const float f4 = std::sqrt(Dot(dx, dy, dz, dx, dy, dz));

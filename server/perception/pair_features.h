@@ -58,7 +58,8 @@ inline int AngleBin(float y, float x) {
   const float ax = std::fabs(x), ay = std::fabs(y);
   const float hi = std::max(ax, ay), lo = std::min(ax, ay);
   if (hi > 0.0f && hi <= 1e30f) {
-    const float half_pi = static_cast<float>(M_PI_2), pi = static_cast<float>(M_PI);
+    const auto half_pi = static_cast<float>(M_PI_2);
+    const auto pi = static_cast<float>(M_PI);
     float a = AtanUnit(lo / hi);
     if (ay > ax) a = half_pi - a;
     if (x < 0.0f) a = pi - a;

@@ -10,7 +10,7 @@ namespace {
 bool Positive(double v) { return std::isfinite(v) && v > 0.0; }
 bool NonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
 
-Status Field(std::string name, std::string requirement) {
+Status Field(const std::string& name, const std::string& requirement) {
   return InvalidArgumentError("perception config: " + name + " must be " + requirement);
 }
 

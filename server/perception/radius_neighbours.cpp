@@ -74,7 +74,7 @@ RadiusNeighbours FindRadiusNeighbours(const std::vector<Eigen::Vector3f>& positi
     return block;
   };
   // KdTreeFLANN compares with static_cast<float>(radius * radius), radius a double.
-  const float r2 = static_cast<float>(static_cast<double>(radius) * radius);
+  const auto r2 = static_cast<float>(static_cast<double>(radius) * radius);
   const auto sq_distance = [&](std::size_t q, std::size_t p) {
     return FlannSquaredDistance(x[q], y[q], z[q], x[p], y[p], z[p]);
   };

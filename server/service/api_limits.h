@@ -26,10 +26,10 @@ struct FieldRange {
   double max = 0.0;
   // (min, max] instead of [min, max].
   bool min_open = false;
-  std::string_view unit = "";
+  std::string_view unit;
   // The layer config's name of the setting where it is not the API's
   // ("change.octree_resolution"), as the tools and the layers' own checks say it.
-  std::string_view setting = "";
+  std::string_view setting;
 };
 
 // OK when `value` (finite) lies in `range`; otherwise INVALID_ARGUMENT naming `path` (the

@@ -18,7 +18,7 @@ template <typename Body>
 grpc::Status Logged(Metrics& metrics, std::string_view method, const std::string& session_id,
                     Body&& body) {
   const auto start = std::chrono::steady_clock::now();
-  const grpc::Status status = body();
+  grpc::Status status = body();
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   metrics.Record(method, static_cast<int>(status.error_code()), ms);

@@ -2,6 +2,7 @@
 #include "service/metrics_http.h"
 
 #include <arpa/inet.h>
+#include <fmt/format.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -58,9 +59,10 @@ void MetricsHttpServer::Serve() {
       body = render_();
       status = "200 OK";
     }
-    const std::string response =
-        "HTTP/1.0 " + status + "\r\nContent-Type: text/plain; version=0.0.4\r\nContent-Length: " +
-        std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body;
+    const std::string response = fmt::format(
+        "HTTP/1.0 {}\r\nContent-Type: text/plain; version=0.0.4\r\nContent-Length: {}\r\n"
+        "Connection: close\r\n\r\n{}",
+        status, body.size(), body);
     for (std::size_t sent = 0; sent < response.size();) {
       const ssize_t n =
           ::send(client, response.data() + sent, response.size() - sent, MSG_NOSIGNAL);

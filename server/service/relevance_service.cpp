@@ -163,8 +163,7 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
       auto after = TakeCloud(*context, request->after_cloud());
       if (!after.ok()) return ToGrpcStatus(after.status());
       outcome = (*session)->PostOutcomeFromCloud(request->frame_id(), request->supervoxel_id(),
-                                                 std::move(after->cloud), request->request_id(),
-                                                 NowUnixMs());
+                                                 after->cloud, request->request_id(), NowUnixMs());
     } else if (const int label = ClassOf(request->label()); label >= 0) {
       outcome = (*session)->PostOutcome(request->frame_id(), request->supervoxel_id(), label,
                                         request->request_id(), NowUnixMs());

@@ -201,7 +201,7 @@ Status PostgresSessionStore::CreateSession(const SessionRecord& r) {
   const cmm::Paper2018Switches& s = r.cmm_config.switches;
   static_assert(std::size(kPaper2018SwitchFields) == 6, "a new switch needs a column and a bind");
   std::int64_t epoch = 0;
-  const Status created = InTransaction([&](PgConnection& c) -> Status {
+  Status created = InTransaction([&](PgConnection& c) -> Status {
     auto inserted =
         c.Execute(std::string("INSERT INTO sessions (") + kSessionColumns +
                       ") VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15)"
@@ -299,7 +299,7 @@ StatusOr<std::vector<SessionSummary>> PostgresSessionStore::ListSessions() {
 }
 
 Status PostgresSessionStore::DeleteSession(std::string_view id) {
-  const Status deleted = InTransaction([&](PgConnection& c) -> Status {
+  Status deleted = InTransaction([&](PgConnection& c) -> Status {
     // The owner row first: deleting it waits for a write in flight (which holds
     // it), so the samples deleted next include that write's.
     const char* statements[] = {

@@ -28,9 +28,8 @@ StatusOr<std::unique_ptr<Session>> Session::Create(std::string id, std::string t
   auto model =
       cmm::CollaborativeMixtureModels::Create(settings.classifier, settings.feature_dimension);
   if (!model.ok()) return model.status();
-  return std::unique_ptr<Session>(new Session(std::move(id), std::move(token_hash),
-                                              std::move(settings), std::move(model).value(),
-                                              now_unix_ms, store));
+  return std::unique_ptr<Session>(new Session(std::move(id), std::move(token_hash), settings,
+                                              std::move(model).value(), now_unix_ms, store));
 }
 
 Session::Session(std::string id, std::string token_hash, SessionSettings settings,
@@ -38,7 +37,7 @@ Session::Session(std::string id, std::string token_hash, SessionSettings setting
                  SessionStore* store)
     : id_(std::move(id)),
       token_hash_(std::move(token_hash)),
-      settings_(std::move(settings)),
+      settings_(settings),
       store_(store),
       model_(std::move(model)),
       random_(settings_.classifier.seed ^ kTargetStream),
@@ -123,7 +122,7 @@ StatusOr<Outcome> Session::LearnOutcomeLocked(const perception::Frame& frame,
     return status;
   }
   last_used_unix_ms_ = now_unix_ms;
-  Outcome outcome{StatsLocked(), label, std::move(evidence)};
+  Outcome outcome{StatsLocked(), label, evidence};
   if (!request_id.empty()) RememberLocked(request_id, outcome);
   return outcome;
 }
@@ -140,7 +139,7 @@ StatusOr<Outcome> Session::PostOutcome(std::uint64_t frame_id, std::uint32_t sup
 }
 
 StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uint32_t supervoxel_id,
-                                                perception::Cloud after,
+                                                const perception::Cloud& after,
                                                 const std::string& request_id,
                                                 std::int64_t now_unix_ms) {
   std::shared_ptr<const perception::Frame> frame;

@@ -102,8 +102,8 @@ class Session {
   // The same, with the label decided by the change detector (docs/method.md §5) from
   // the frame's cloud and `after`, the cloud after the push.
   StatusOr<Outcome> PostOutcomeFromCloud(std::uint64_t frame_id, std::uint32_t supervoxel_id,
-                                         perception::Cloud after, const std::string& request_id,
-                                         std::int64_t now_unix_ms);
+                                         const perception::Cloud& after,
+                                         const std::string& request_id, std::int64_t now_unix_ms);
 
   // Relevance and choice maps of raw feature vectors (one per row); no target is
   // drawn and nothing is learned.

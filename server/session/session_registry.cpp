@@ -25,8 +25,7 @@ StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings setti
                                                            std::string config_blob,
                                                            std::int64_t now_unix_ms) {
   std::string token = RandomHex(32);
-  auto session =
-      Session::Create(RandomHex(16), Sha256Hex(token), std::move(settings), now_unix_ms, store_);
+  auto session = Session::Create(RandomHex(16), Sha256Hex(token), settings, now_unix_ms, store_);
   if (!session.ok()) return session.status();
   std::shared_ptr<Session> shared = std::move(session).value();
   shared->set_policy(policy_);
@@ -53,7 +52,7 @@ StatusOr<SessionRegistry::Created> SessionRegistry::Import(SessionSettings setti
                                                            std::string config_blob,
                                                            const SessionState& state,
                                                            std::int64_t now_unix_ms) {
-  auto created = Create(std::move(settings), std::move(config_blob), now_unix_ms);
+  auto created = Create(settings, std::move(config_blob), now_unix_ms);
   if (!created.ok()) return created.status();
   if (auto imported = created->session->ImportState(state, now_unix_ms); !imported.ok()) {
     (void)Delete(created->session->id());

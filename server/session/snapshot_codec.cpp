@@ -255,7 +255,7 @@ Status CheckShape(const cmm::CmmSnapshot& s) {
   if (s.dimension < 1) {
     return InvalidArgumentError("snapshot has dimension " + std::to_string(s.dimension));
   }
-  const std::size_t p = static_cast<std::size_t>(s.dimension);
+  const auto p = static_cast<std::size_t>(s.dimension);
   if (s.features.size() != s.labels.size() * p) {
     return InvalidArgumentError("snapshot holds " + std::to_string(s.features.size()) +
                                 " feature values for " + std::to_string(s.labels.size()) +
@@ -276,7 +276,7 @@ Status CheckShape(const cmm::CmmSnapshot& s) {
 StatusOr<std::string> EncodeSnapshot(const cmm::CmmSnapshot& s) {
   if (Status status = CheckShape(s); !status.ok()) return status;
   std::string blob;
-  const std::size_t p = static_cast<std::size_t>(s.dimension);
+  const auto p = static_cast<std::size_t>(s.dimension);
   std::size_t components = 0;
   for (const auto& of_class : s.components) components += of_class.size();
   blob.reserve(64 + s.features.size() * 8 + s.labels.size() * 5 + components * 8 * (p * p + p));

@@ -167,7 +167,9 @@ StatusOr<std::unique_ptr<SqliteSessionStore>> SqliteSessionStore::Open(
       " interactions = interactions + ?3 WHERE id = ?1");
   if (!error.ok()) return error;
 
-  auto connection = std::unique_ptr<Connection>(
+  // Not make_unique: Connection is an aggregate, which make_unique builds with
+  // parentheses, and clang before 16 (clang-tidy's parser here) cannot.
+  auto connection = std::unique_ptr<Connection>(  // NOLINT(modernize-make-unique)
       new Connection{std::move(claim), std::move(db), std::move(insert_session).value(),
                      std::move(select_session).value(), std::move(select_dimension).value(),
                      std::move(list_sessions).value(), std::move(delete_samples).value(),

@@ -41,7 +41,7 @@ Scene ThreeByThree() {
   std::vector<pcd::Point> points(9);
   for (int i = 0; i < 9; ++i) {
     points[i] = {0.1f * static_cast<float>(i % 3),
-                 0.1f * static_cast<float>(i / 3),
+                 0.1f * static_cast<float>(i / 3),  // NOLINT(bugprone-integer-division): the row
                  1.0f,
                  255,
                  255,

@@ -122,7 +122,7 @@ class FlakyService final : public v1::RelevanceService::Service {
   }
   grpc::Status ComputeMaps(grpc::ServerContext* context, const v1::ComputeMapsRequest*,
                            v1::ComputeMapsResponse*) override {
-    const grpc::Status status = Answer();
+    grpc::Status status = Answer();
     if (!status.ok() && pushback_) {
       context->AddTrailingMetadata("grpc-retry-pushback-ms", std::to_string(*pushback_));
     }

@@ -36,7 +36,7 @@ TEST(WritePng, EncodesThePixelsLosslessly) {
   const std::size_t idat = 33;      // signature 8 + IHDR chunk 25
   ASSERT_EQ(std::string(png.begin() + idat + 4, png.begin() + idat + 8), "IDAT");
   const std::uint32_t length = ReadU32(png, idat);
-  std::vector<unsigned char> raw(3 * (7 * 3 + 1));
+  std::vector<unsigned char> raw(std::size_t{3} * (7 * 3 + 1));
   uLongf raw_size = raw.size();
   ASSERT_EQ(uncompress(raw.data(), &raw_size, png.data() + idat + 8, length), Z_OK);
   ASSERT_EQ(raw_size, raw.size());

@@ -47,7 +47,8 @@ relmap::pcd::Points Decimate(const relmap::pcd::Points& cloud, std::uint32_t ste
   cut.height = cloud.height / step;
   for (std::uint32_t row = 0; row < cut.height; ++row) {
     for (std::uint32_t column = 0; column < cut.width; ++column) {
-      cut.points.push_back(cloud.points[std::size_t{row} * step * cloud.width + column * step]);
+      cut.points.push_back(
+          cloud.points[std::size_t{row} * step * cloud.width + std::size_t{column} * step]);
     }
   }
   return cut;
@@ -296,12 +297,11 @@ int main(int argc, char** argv) {
         {"compressed", Compressed(cut)}};
     for (const auto& [kind, file] : files) {
       CheckReadsBack(file, cut);
-      for (const char* target : {"pcd_reader", "pcd_decoder"}) {
-        Write(out / target / (stem + "_" + kind + ".pcd"), file);
-      }
+      std::string name = stem;
+      name.append("_").append(kind).append(".pcd");
+      for (const char* target : {"pcd_reader", "pcd_decoder"}) Write(out / target / name, file);
       // The header and the first bytes of the data, for the header parser.
-      Write(out / "pcd_header" / (stem + "_" + kind + ".pcd"),
-            file.substr(0, file.find("DATA") + 64));
+      Write(out / "pcd_header" / name, file.substr(0, file.find("DATA") + 64));
     }
     std::string packed;
     AppendU32(packed, cut.width);

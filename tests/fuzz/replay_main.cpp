@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "common/command_line.h"
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
 
 namespace {
@@ -28,9 +30,7 @@ std::vector<std::filesystem::path> InputsOf(const std::filesystem::path& path) {
   return inputs;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   std::size_t replayed = 0;
   for (int i = 1; i < argc; ++i) {
     if (!std::filesystem::exists(argv[i])) {
@@ -51,4 +51,10 @@ int main(int argc, char** argv) {
   }
   std::printf("replay: %zu inputs, no crash\n", replayed);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return relmap::tools::ExitCodeOf("fuzz-replay", [&] { return Main(argc, argv); });
 }

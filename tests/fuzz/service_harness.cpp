@@ -21,7 +21,7 @@ namespace {
 // Small enough that a mapped cloud costs milliseconds: 32 x 24 points, a handful of
 // feature vectors per request, sessions as in a test.
 constexpr std::size_t kMaxSessions = 4;
-constexpr long long kMaxPoints = 32 * 24;
+constexpr long long kMaxPoints = 32LL * 24;
 constexpr std::size_t kMaxFeaturesPerRequest = 16;
 
 service::ServiceLimits FuzzLimits() {

@@ -88,7 +88,7 @@ void Drive(client::RelevanceClient& client, int index, const std::vector<v1::Clo
            const SessionRun* script, SessionRun* run, Concurrency* concurrency) {
   const auto call = [&](auto&& rpc) {
     if (concurrency != nullptr) concurrency->Enter();
-    const grpc::Status status = rpc();
+    grpc::Status status = rpc();
     if (concurrency != nullptr) concurrency->Leave();
     return status;
   };

@@ -1,10 +1,10 @@
 // A server told to stop behind a load balancer: SIGTERM turns its health to
 // NOT_SERVING at once while it still answers calls for --drain-seconds, then it stops.
 #include <gtest/gtest.h>
-#include <signal.h>
 #include <sys/wait.h>
 
 #include <chrono>
+#include <csignal>
 #include <memory>
 #include <thread>
 

@@ -49,7 +49,7 @@ const v1::Cloud& Tabletop() {
 // --data-dir, served in this process.
 class InProcessServer {
  public:
-  explicit InProcessServer(std::string admin_key = {})
+  explicit InProcessServer(const std::string& admin_key = {})
       : registry_(kMaxSessions),
         service_(registry_, Limits(),
                  admin_key.empty() ? std::string() : session::Sha256Hex(admin_key)) {
@@ -219,7 +219,7 @@ class ServiceTest : public ::testing::Test {
     v1::ImportSessionRequest request;
     *request.mutable_state() = state;
     v1::ImportSessionResponse response;
-    const grpc::Status status = server_.stub().ImportSession(&context, request, &response);
+    grpc::Status status = server_.stub().ImportSession(&context, request, &response);
     if (imported != nullptr) *imported = {response.session_id(), response.session_token()};
     return status;
   }
@@ -611,7 +611,7 @@ TEST_F(Clouds, HoleOnlyEmptyOrMalformedCloudsAreInvalidArguments) {
     mixed_holes.mutable_packed()->set_points(points);
   }
   v1::Cloud short_of_bytes = Tabletop();
-  short_of_bytes.mutable_packed()->mutable_points()->resize(16 * 10);
+  short_of_bytes.mutable_packed()->mutable_points()->resize(std::size_t{16} * 10);
   const struct {
     const char* name;
     v1::Cloud cloud;
@@ -967,7 +967,8 @@ TEST_F(ExportImport, ABodyThatDoesNotParseIsRefusedByGrpcBeforeTheHandler) {
   grpc::ByteBuffer response;
   std::promise<grpc::Status> done;
   generic.UnaryCall(&context, "/relmap.v1.RelevanceService/ImportSession", grpc::StubOptions(),
-                    &request, &response, [&](grpc::Status status) { done.set_value(status); });
+                    &request, &response,
+                    [&](const grpc::Status& status) { done.set_value(status); });
   const grpc::Status status = done.get_future().get();
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INTERNAL);
   EXPECT_EQ(status.error_message(), "");

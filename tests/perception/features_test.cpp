@@ -7,6 +7,7 @@
 #include <pcl/point_types.h>
 #include <pcl/search/kdtree.h>
 
+#include <memory>
 #include <string>
 
 #include "perception/colour_histogram.h"
@@ -53,7 +54,10 @@ void ExpectInvariants(const FeatureMatrix& f) {
     EXPECT_GE(f.values.row(r).minCoeff(), 0.0) << r;
     EXPECT_LE(f.values.row(r).maxCoeff(), 1.0) << r;
     for (int block = 0; block < 3; ++block) {  // colour histograms: exact counts / n
-      EXPECT_NEAR(f.values.row(r).segment(block * kColourBins, kColourBins).sum(), 1.0, 1e-9);
+      EXPECT_NEAR(f.values.row(r)
+                      .segment(static_cast<Eigen::Index>(block) * kColourBins, kColourBins)
+                      .sum(),
+                  1.0, 1e-9);
     }
     for (int block = 0; block < 3; ++block) {  // FPFH: 1 less what zeroing < 1e-3 removed
       const double sum = f.values.row(r).segment(kColourDims + block * kFpfhBins, kFpfhBins).sum();
@@ -124,8 +128,7 @@ TEST(PointFpfh, MatchesPclFpfhEstimation) {
   pcl::FPFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::FPFHSignature33> estimation;
   estimation.setInputCloud(cloud);
   estimation.setInputNormals(cloud_normals);
-  estimation.setSearchMethod(
-      pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+  estimation.setSearchMethod(std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>());
   estimation.setRadiusSearch(0.05);
   pcl::PointCloud<pcl::FPFHSignature33> theirs;
   estimation.compute(theirs);

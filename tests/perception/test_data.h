@@ -57,6 +57,6 @@ inline void SmallSceneVoxels(std::vector<Eigen::Vector3f>& positions,
   const ::relmap::perception::Cloud var =                                          \
       ::relmap::perception::testing::LoadRealCloud(name, var##_skip);              \
   if (var##_skip) GTEST_SKIP() << "real data not found: " << RELMAP_TEST_DATA_DIR; \
-  ASSERT_GT(var.size(), 0u)
+  ASSERT_GT((var).size(), 0u)
 
 }  // namespace relmap::perception::testing

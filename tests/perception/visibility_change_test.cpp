@@ -58,7 +58,7 @@ double ToleranceAtOneMetre() {
 // The patch's outer ring of pixels lies one pixel (7 mm) from the unchanged wall around it,
 // within the tolerance of the search window: still there, whatever happened to the patch.
 constexpr std::size_t kRing = 20 * 20 - 18 * 18;
-constexpr std::size_t kInside = 18 * 18;
+constexpr std::size_t kInside = std::size_t{18} * 18;
 
 ChangeEvidence Detect(float patch_depth_after, bool compensate = true) {
   ChangeDetectorConfig config;

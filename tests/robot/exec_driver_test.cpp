@@ -40,8 +40,7 @@ class ExecDriverTest : public ::testing::Test {
 
 TEST_F(ExecDriverTest, ADoneAnswerWithoutLabelLeavesTheLabelToTheChangeDetector) {
   StatusOr<PushOutcome> outcome =
-      Script("cat > /dev/null; echo '{\"result\": \"done\", \"message\": \"pushed\"}'")
-          .Push(Target());
+      Script(R"(cat > /dev/null; echo '{"result": "done", "message": "pushed"}')").Push(Target());
   ASSERT_TRUE(outcome.ok()) << outcome.status().message();
   EXPECT_EQ(outcome->result, PushResult::kDone);
   EXPECT_FALSE(outcome->label.has_value());
@@ -50,7 +49,7 @@ TEST_F(ExecDriverTest, ADoneAnswerWithoutLabelLeavesTheLabelToTheChangeDetector)
 
 TEST_F(ExecDriverTest, TheDriversOwnLabelIsKept) {
   StatusOr<PushOutcome> outcome =
-      Script("cat > /dev/null; echo '{\"result\":\"done\",\"label\":\"moved\"}'").Push(Target());
+      Script(R"(cat > /dev/null; echo '{"result":"done","label":"moved"}')").Push(Target());
   ASSERT_TRUE(outcome.ok()) << outcome.status().message();
   EXPECT_EQ(outcome->label, v1::LABEL_MOVEABLE);
 }
@@ -69,13 +68,13 @@ TEST_F(ExecDriverTest, TheTargetArrivesAsOneJsonObjectOnStdin) {
 
 TEST_F(ExecDriverTest, ACrashIsAnError) {
   StatusOr<PushOutcome> outcome =
-      Script("echo '{\"result\":\"done\"}'; kill -SEGV $$").Push(Target());
+      Script(R"(echo '{"result":"done"}'; kill -SEGV $$)").Push(Target());
   ASSERT_FALSE(outcome.ok());
   EXPECT_EQ(outcome.status().code(), StatusCode::kUnknown);
 }
 
 TEST_F(ExecDriverTest, ANonZeroExitIsAnErrorEvenWithAGoodAnswer) {
-  StatusOr<PushOutcome> outcome = Script("echo '{\"result\":\"done\"}'; exit 3").Push(Target());
+  StatusOr<PushOutcome> outcome = Script(R"(echo '{"result":"done"}'; exit 3)").Push(Target());
   ASSERT_FALSE(outcome.ok());
   EXPECT_NE(outcome.status().message().find("status 3"), std::string::npos);
 }

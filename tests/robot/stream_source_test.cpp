@@ -52,7 +52,7 @@ std::string BinaryPcd(int points) {
 std::string CompressedPcd() {
   const std::string lzf("\x05\nsome\nbytes\x00\x01", 14);
   std::string sizes(8, '\0');
-  const std::uint32_t compressed = static_cast<std::uint32_t>(lzf.size());
+  const auto compressed = static_cast<std::uint32_t>(lzf.size());
   const std::uint32_t uncompressed = 3 * 16;
   std::memcpy(sizes.data(), &compressed, 4);
   std::memcpy(sizes.data() + 4, &uncompressed, 4);

@@ -1,11 +1,11 @@
 // The stores' durability and concurrency promises: every acknowledged append
 // survives kill -9 of the server, and appends from several threads all land.
 #include <gtest/gtest.h>
-#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <bit>
+#include <csignal>
 #include <cstdint>
 #include <string>
 #include <thread>

@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 #include <libpq-fe.h>
-#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <bit>
 #include <chrono>
+#include <csignal>
 #include <string>
 #include <thread>
 #include <vector>

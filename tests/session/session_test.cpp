@@ -20,7 +20,7 @@ using testing::FeatureSettings;
 constexpr int kDimension = testing::kTestFeatureDimension;
 
 std::unique_ptr<Session> NewSession(SessionSettings settings = FeatureSettings()) {
-  auto session = Session::Create("s1", "hash", std::move(settings), 1000);
+  auto session = Session::Create("s1", "hash", settings, 1000);
   EXPECT_TRUE(session.ok()) << session.status().message();
   return session.ok() ? std::move(session).value() : nullptr;
 }

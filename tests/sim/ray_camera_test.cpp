@@ -164,7 +164,7 @@ TEST(RayCamera, DepthNoiseIsGaussianAlongTheRayAndSeeded) {
     sum += error;
     sum_sq += error * error;
   }
-  const double n = static_cast<double>(fa.points.size());
+  const auto n = static_cast<double>(fa.points.size());
   EXPECT_NEAR(sum / n, 0.0, 0.001);
   EXPECT_NEAR(std::sqrt(sum_sq / n), 0.01, 0.001);
   EXPECT_NE(a->Capture().points[0].z, fa.points[0].z);  // the next frame draws anew

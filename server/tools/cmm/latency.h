@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <vector>
 
 namespace relmap::tools {
@@ -36,7 +37,8 @@ class LatencyRecorder {
     std::vector<double> sorted = micros_;
     std::sort(sorted.begin(), sorted.end());
     const auto rank = [&](double q) {
-      const auto index = static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1) + 0.5);
+      const auto index =
+          static_cast<std::size_t>(std::lround(q * static_cast<double>(sorted.size() - 1)));
       return sorted[index];
     };
     s.p50 = rank(0.50);

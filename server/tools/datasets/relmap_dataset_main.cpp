@@ -25,9 +25,7 @@ double Number(std::string_view flag, const char* text) {
   return relmap::tools::ParseNumberOrExit("relmap-dataset", flag, text);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   using namespace relmap::datasets;
   ProblemOptions options;
   for (int i = 1; i < argc; ++i) {
@@ -61,4 +59,10 @@ int main(int argc, char** argv) {
   if (options.samples < 1 || options.dimension < 2) Fail("--samples >= 1 and --dimension >= 2");
   WriteLabelledCsv(MakeProblem(options), std::cout);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return relmap::tools::ExitCodeOf("relmap-dataset", [&] { return Main(argc, argv); });
 }

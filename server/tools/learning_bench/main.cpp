@@ -161,6 +161,7 @@ std::vector<std::vector<Stream>> LoadStreams(const Options& o) {
     const StreamSpec* spec = FindBuiltInStream(name);
     if (spec == nullptr) Fail(fmt::format("unknown stream '{}'\n{}", name, kUsage));
     std::vector<Stream> replications;
+    replications.reserve(static_cast<std::size_t>(o.replications));
     for (int r = 0; r < o.replications; ++r) {
       replications.push_back(MakeStream(*spec, o.sizes, o.seed, r));
     }
@@ -299,4 +300,7 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace relmap::learning_bench
 
-int main(int argc, char** argv) { return relmap::learning_bench::Main(argc, argv); }
+int main(int argc, char** argv) {
+  return relmap::tools::ExitCodeOf(relmap::learning_bench::kProgram,
+                                   [&] { return relmap::learning_bench::Main(argc, argv); });
+}

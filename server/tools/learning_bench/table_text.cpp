@@ -28,7 +28,10 @@ std::string FormatTable(const std::vector<TableRow>& rows) {
   };
   std::string out = line({"stream", "learner", "bal_acc", "bal_min", "soft_acc", "log_loss",
                           "brier", "comp_0+1", "upd_p50us", "upd_p99us", "pred_us"});
-  out += std::string(stream_width + learner_width + 4 + 9 * 11, '-') + "\n";
+  // Two names, two gaps, and nine metric cells of two spaces and nine characters.
+  constexpr std::size_t kMetricCells = 9, kMetricCellWidth = 2 + 9;
+  out +=
+      std::string(stream_width + learner_width + 4 + kMetricCells * kMetricCellWidth, '-') + "\n";
   for (const TableRow& r : rows) {
     const std::string components =
         r.components ? fmt::format("{:.1f}+{:.1f}", (*r.components)[0], (*r.components)[1]) : "-";

@@ -55,7 +55,8 @@ bool Decimate(std::uint32_t stride, CloudInput& input) {
   std::vector<perception::CloudPoint> kept;
   for (std::uint32_t v = 0; v < input.height; ++v) {
     for (std::uint32_t u = 0; u < input.width; ++u) {
-      kept.push_back(points[static_cast<std::size_t>(v) * stride * cloud->width() + u * stride]);
+      kept.push_back(points[static_cast<std::size_t>(v) * stride * cloud->width() +
+                            static_cast<std::size_t>(u) * stride]);
     }
   }
   input.bytes = PackedBytes(kept);

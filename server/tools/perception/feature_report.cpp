@@ -21,7 +21,7 @@ std::string FpfhDeviationJson(const perception::Frame& frame,
   const Eigen::VectorXd l1 = diff.rowwise().sum();
   char buffer[160];
   std::snprintf(buffer, sizeof(buffer),
-                ",\"fpfh_l1_mean\":%.4f,\"fpfh_l1_max\":%.4f,\"fpfh_abs_max\":%.4f", l1.mean(),
+                R"(,"fpfh_l1_mean":%.4f,"fpfh_l1_max":%.4f,"fpfh_abs_max":%.4f)", l1.mean(),
                 l1.maxCoeff(), diff.maxCoeff());
   return buffer;
 }

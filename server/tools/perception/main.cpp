@@ -13,6 +13,7 @@
 
 #include "change_command.h"
 #include "cloud_input.h"
+#include "common/command_line.h"
 #include "feature_report.h"
 #include "perception/colour_histogram.h"
 #include "perception/fpfh.h"
@@ -59,9 +60,7 @@ void PrintTimings(const TimingOptions& options, const PipelineTimings& timings,
       Median(timings.normals), Median(timings.features), Median(timings.total), extra.c_str());
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   namespace tools = relmap::tools;
   if (argc >= 2 && std::string(argv[1]) == "--change") return tools::RunChangeCommand(argc, argv);
   auto options = tools::ParseTimingOptions(argc, argv);
@@ -81,4 +80,10 @@ int main(int argc, char** argv) {
   if (options->feature_stats) extra += tools::FeatureStatsJson(timings->last.features);
   PrintTimings(*options, *timings, extra);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return relmap::tools::ExitCodeOf("relmap-perception", [&] { return Main(argc, argv); });
 }

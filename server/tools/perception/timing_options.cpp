@@ -1,6 +1,8 @@
 // Flags with a value read it from the next argument; switches take none.
 #include "timing_options.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <exception>
 
@@ -74,7 +76,7 @@ StatusOr<TimingOptions> ParseTimingOptions(int argc, char** argv) {
       try {
         known = SetValueFlag(flag, value, options);
       } catch (const std::exception&) {
-        return InvalidArgumentError("bad value '" + value + "' for " + flag);
+        return InvalidArgumentError(fmt::format("bad value '{}' for {}", value, flag));
       }
       if (!known.ok()) return known.status();
       if (!*known) return InvalidArgumentError("unknown option " + flag);

@@ -141,7 +141,7 @@ void PrintTextReport(std::FILE* out, const LoadReport& report) {
   std::fprintf(out,
                "RESOURCE_EXHAUSTED (worker pool full), retried: %llu (ComputeMaps %llu, "
                "PostOutcome %llu)\n",
-               static_cast<unsigned long long>(r.compute_maps_exhausted + r.post_outcome_exhausted),
+               static_cast<unsigned long long>(r.compute_maps_exhausted) + r.post_outcome_exhausted,
                static_cast<unsigned long long>(r.compute_maps_exhausted),
                static_cast<unsigned long long>(r.post_outcome_exhausted));
   std::fprintf(out, "labels posted: %llu moveable, %llu not moveable\n",

@@ -10,13 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "common/command_line.h"
 #include "perception/change_detector.h"
 #include "perception/decode.h"
 #include "perception/supervoxels.h"
 
 namespace rp = relmap::perception;
 
-int main(int argc, char** argv) {
+namespace {
+
+int Main(int argc, char** argv) {
   std::string data = RELMAP_BENCHMARK_DATA_DIR;
   rp::ChangeDetectorConfig config;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -73,4 +76,10 @@ int main(int argc, char** argv) {
   }
   std::printf("| all | %zu | %zu |\n\n%s", targets, moved, listed.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return relmap::tools::ExitCodeOf("static_change_scan", [&] { return Main(argc, argv); });
 }

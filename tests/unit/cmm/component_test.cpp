@@ -34,7 +34,7 @@ std::vector<int> AllIndices(const Dataset& data) {
 double ClosedFormLogDensity(const Eigen::VectorXd& x, const Eigen::VectorXd& mu,
                             const Eigen::MatrixXd& sigma) {
   const Eigen::VectorXd d = x - mu;
-  const double p = static_cast<double>(x.size());
+  const auto p = static_cast<double>(x.size());
   return -0.5 * d.dot(sigma.inverse() * d) - 0.5 * std::log(sigma.determinant()) -
          0.5 * p * kLogTwoPi;
 }

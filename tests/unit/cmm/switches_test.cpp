@@ -13,14 +13,16 @@ ComponentSnapshot SnapshotOf(const std::vector<int>& samples, const std::vector<
                              int p, double weight) {
   Eigen::MatrixXd points(p, static_cast<Eigen::Index>(samples.size()));
   for (std::size_t j = 0; j < samples.size(); ++j) {
-    points.col(static_cast<Eigen::Index>(j)) =
-        Eigen::Map<const Eigen::VectorXd>(features.data() + samples[j] * p, p);
+    points.col(static_cast<Eigen::Index>(j)) = Eigen::Map<const Eigen::VectorXd>(
+        features.data() + static_cast<std::ptrdiff_t>(samples[j]) * p, p);
   }
   const Eigen::VectorXd mean = points.rowwise().mean();
   points.colwise() -= mean;
   const Eigen::MatrixXd scatter = points * points.transpose();
-  return {
-      samples, {mean.data(), mean.data() + p}, {scatter.data(), scatter.data() + p * p}, weight};
+  return {samples,
+          {mean.data(), mean.data() + p},
+          {scatter.data(), scatter.data() + static_cast<std::ptrdiff_t>(p) * p},
+          weight};
 }
 
 // Appends `count` 2-d points around (x, y) on a small deterministic spiral.
