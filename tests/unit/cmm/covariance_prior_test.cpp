@@ -84,7 +84,7 @@ TEST(CovariancePrior, BackgroundIsTwiceTheSpreadOfAllTheData) {
   // Σ(dx²)/3 = (30.25·2 + 20.25·2)/3 = 33.667; B = N(x̄, 4·(OAS(total) + φI)).
   const CovariancePrior prior = ComputeCovariancePrior(TwoPairs(), 4, CmmConfig{});
   double at_mean = 0.0;
-  prior.BackgroundLogDensity(prior.background_mean.data(), 1, 2, &at_mean);
+  prior.BackgroundLogDensity(prior.background_mean.data(), 1, 1, &at_mean);
   EXPECT_NEAR(prior.background_mean[0], 5.5, 1e-15);
   EXPECT_NEAR(prior.background_mean[1], 5.5, 1e-15);
   // At its mean, log B = −½ log det(2π·Σ_B) < the log-density of a unit

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# The test suite built with a sanitizer and run, in a build folder of its own:
+#   scripts/sanitize.sh address [ctest arguments]  # ASan + UBSan, build-asan/, every test
+#   scripts/sanitize.sh thread [ctest arguments]   # TSan, build-tsan/, the concurrent tests
+# A report fails the test that caused it (the sanitizers abort the process), so the
+# summary ctest prints is the answer; reports are in the failing test's output.
+# docs/reliability.md gives how long each takes and what they found.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mode=${1:-address}
+shift || true
+./scripts/install-deps.sh
+
+case "$mode" in
+  address)
+    build=build-asan
+    # -fno-sanitize-recover: an undefined-behaviour report ends the process like an
+    # ASan one, so the test fails instead of printing and passing.
+    flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+    # Style checks read sources, not binaries: nothing for a sanitizer to see.
+    selection=(-LE style)
+    export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
+    export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+    ;;
+  thread)
+    build=build-tsan
+    flags="-fsanitize=thread -fno-omit-frame-pointer"
+    # The tests that run threads against each other: the session layer's concurrency
+    # tests and every test of the real server process (its gRPC worker threads).
+    selection=(-L "service|integration|cluster|session")
+    # gRPC and protobuf come from Debian, not built with TSan: races TSan cannot see
+    # through their synchronisation are suppressed by library, nothing of relmap's.
+    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/support/tsan.supp"
+    ;;
+  *)
+    echo "usage: scripts/sanitize.sh address|thread [ctest arguments]" >&2
+    exit 2
+    ;;
+esac
+
+start=$(date +%s)
+# -g1: line tables for the reports' stacks at a fraction of full debug info's build time.
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_CXX_FLAGS="$flags -g1" -DCMAKE_C_FLAGS="$flags -g1" \
+  -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags"
+# Two jobs: a sanitized PCL translation unit takes over 1 GB of compiler memory.
+cmake --build "$build" -j 2
+built=$(date +%s)
+status=0
+ctest --test-dir "$build" --output-on-failure -j 2 "${selection[@]}" "$@" || status=$?
+echo "sanitize $mode: build $((built - start)) s, tests $(($(date +%s) - built)) s, ctest exit $status"
+exit "$status"
