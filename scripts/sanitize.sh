@@ -28,9 +28,7 @@ case "$mode" in
     # The tests that run threads against each other: the session layer's concurrency
     # tests and every test of the real server process (its gRPC worker threads).
     selection=(-L "service|integration|cluster|session")
-    # gRPC and protobuf come from Debian, not built with TSan: races TSan cannot see
-    # through their synchronisation are suppressed by library, nothing of relmap's.
-    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/support/tsan.supp"
+    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
     ;;
   *)
     echo "usage: scripts/sanitize.sh address|thread [ctest arguments]" >&2
