@@ -10,10 +10,14 @@
 
 namespace relmap::tools {
 
+// Prints "<program>: <message>" to standard error.
+inline void PrintError(std::string_view program, const char* message) noexcept {
+  std::fprintf(stderr, "%.*s: %s\n", static_cast<int>(program.size()), program.data(), message);
+}
+
 // Prints "<program>: <message>" to standard error and exits with code 2.
 [[noreturn]] inline void ExitWithError(std::string_view program, const std::string& message) {
-  std::fprintf(stderr, "%.*s: %s\n", static_cast<int>(program.size()), program.data(),
-               message.c_str());
+  PrintError(program, message.c_str());
   std::exit(2);
 }
 
@@ -35,11 +39,9 @@ int ExitCodeOf(std::string_view program, Body&& body) noexcept {
   try {
     return body();
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "%.*s: %s\n", static_cast<int>(program.size()), program.data(),
-                 error.what());
+    PrintError(program, error.what());
   } catch (...) {
-    std::fprintf(stderr, "%.*s: unknown exception\n", static_cast<int>(program.size()),
-                 program.data());
+    PrintError(program, "unknown exception");
   }
   return 1;
 }
