@@ -4,13 +4,13 @@
 Most of clang-tidy's time on this code goes to matching over the declarations of the
 headers every unit shares (gRPC, protobuf, GoogleTest, Eigen, spdlog, PCL): measured on
 server/perception/supervoxels.cpp, 10 s of parsing and 30 s of matching, nearly all of
-it in third-party headers. Units whose flags differ at most in their include folders are
-therefore checked together, as one file that includes them all with the union of those
-folders (and of their macro definitions), so that each batch parses and matches the shared headers once. Two units of a
-batch may not compile together (the same name in two anonymous namespaces): the units
-a batch's compiler errors name are then checked apart from the rest (or the batch is
-halved), and a unit checked alone gets exactly its own flags, so a unit's own compiler
-error is reported like any other finding.
+it in third-party headers. Units whose flags differ at most in their include folders and
+macro definitions are therefore checked together, as one file that includes them all
+with the union of those flags, so that each batch parses and matches the shared headers
+once. Two units of a batch may not compile together (the same name in two anonymous
+namespaces): the units a batch's compiler errors name are then checked apart from the
+rest (or the batch is halved), and a unit checked alone gets exactly its own flags, so
+a unit's own compiler error is reported like any other finding.
 
   clang_tidy_batches.py BUILD_DIR FILE_REGEX HEADER_REGEX [--jobs N] [--batch-size N] [--verbose]
 """
@@ -302,7 +302,9 @@ def main():
     groups = units_by_batch_key(database, re.compile(args.file_regex))
     work_dir = os.path.join(os.path.abspath(args.build_dir), "clang-tidy")
     shutil.rmtree(work_dir, ignore_errors=True)  # the batches of the last run
-    configs = {group[0].config: effective_config(group[0].source) for group in groups}
+    # One resolved configuration per .clang-tidy folder, from any unit it applies to.
+    example = {unit.config: unit.source for group in groups for unit in group}
+    configs = {folder: effective_config(source) for folder, source in example.items()}
     batches = Batches(work_dir, args.header_regex, args.verbose, configs)
     planned = [batch for group in groups for batch in batches_of(group, args.batch_size)]
     # Largest first, so that the last batches to finish are short ones.
