@@ -22,7 +22,8 @@ INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 # The server's tests include its headers by design; every other file is a client of it.
 SERVER_TESTS = ("tests/unit/", "tests/perception/", "tests/session/", "tests/integration/",
-                "tests/benchmarks/cmm_benchmark", "tests/benchmarks/session_store",
+                "tests/benchmarks/cmm_benchmark", "tests/benchmarks/learning_cost",
+                "tests/benchmarks/session_store",
                 "tests/benchmarks/durable_samples", "tests/benchmarks/perception/",
                 "tests/support/", "tests/cluster/", "tests/fuzz/")
 BELOW_SERVICE = ("common/", "server/cmm/", "server/perception/", "server/exploration/",
