@@ -24,7 +24,11 @@ constexpr double kMaxLabelNoise = 0.25;
 constexpr double kMinLabelNoise = 1e-3;
 
 double Sigmoid(double t) {
-  return t >= 0.0 ? 1.0 / (1.0 + std::exp(-t)) : std::exp(t) / (1.0 + std::exp(t));
+  if (t >= 0.0) return 1.0 / (1.0 + std::exp(-t));
+  // One exp, not two: with errno-setting exp the compiler may not merge the calls,
+  // and this is the inner loop of every calibration fit.
+  const double e = std::exp(t);
+  return e / (1.0 + e);
 }
 
 // The weighted objective's first and (negated) second derivative at τ.
@@ -37,7 +41,8 @@ Slope SlopeAt(std::span<const double> z, std::span<const double> w, double tau) 
   Slope s;
   for (std::size_t i = 0; i < z.size(); ++i) {
     const double weight = w.empty() ? 1.0 : w[i];
-    const double wrong = Sigmoid(-tau * z[i]);
+    // σ(0) = ½ exactly: the bracket's end τ = 0 costs no exp.
+    const double wrong = tau == 0.0 ? 0.5 : Sigmoid(-tau * z[i]);
     s.gradient += weight * z[i] * wrong;
     s.curvature += weight * z[i] * z[i] * wrong * (1.0 - wrong);
   }
