@@ -92,6 +92,9 @@ class CollaborativeMixtureModels {
   int NearestComponent(int label, const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // SPLIT (§3.6) and MERGE (§3.7) of components_[label][index]; true if accepted.
   bool TrySplit(int label, int index, UpdateReport& report);
+  // SPLIT's two halves of `c` along the gaps of its 1-NN graph; empty when the
+  // graph is connected.
+  std::vector<Component> SplitHalves(Component& c);
   bool TryMerge(int label, int index, UpdateReport& report);
   // §3.4 step 3 and step 4.
   void SplitOrMerge(int label, int index, UpdateReport& report);

@@ -124,6 +124,7 @@ void Component::Refresh(const Dataset& data, const CmmConfig& config,
   const int m = size();
   const auto& switches = config.switches;
   log_density_column_.clear();
+  split_.reset();
   pseudo_samples_ = 0.0;
   centre_ = (switches.first_sample_mean && m <= kHitMaxSize)
                 ? Eigen::VectorXd(data.sample(indices_[0]))

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -89,6 +90,13 @@ class Component {
   // every sample's nearest neighbour lies in its own half).
   void AdoptNearestNeighbours(NearestNeighbourGraph graph) { nearest_ = std::move(graph); }
 
+  // SPLIT's proposal for this component (§3.6, split.cpp): its two halves, or no
+  // half when its 1-NN graph is connected; nullopt until proposed. A function of
+  // the component's samples alone, so it is kept, like the column, until the
+  // component changes: the random re-check of §3.4 mostly revisits unchanged
+  // components, whose halves then cost only the rows of their columns added since.
+  std::optional<std::vector<Component>>& cached_split() { return split_; }
+
   // The log-densities of the dataset's samples under this component, one per
   // sample: the component's column of the n×K cache (§3.8). Filled lazily:
   // only rows added since the last call are computed; any change to the
@@ -124,6 +132,7 @@ class Component {
 
   std::vector<double> log_density_column_;
   NearestNeighbourGraph nearest_;  // empty = not built yet
+  std::optional<std::vector<Component>> split_;
 };
 
 }  // namespace relmap::cmm

@@ -2,6 +2,8 @@
 // gaps of its 1-nearest-neighbour graph, if that raises the likelihood.
 #include <Eigen/Core>
 #include <array>
+#include <optional>
+#include <vector>
 
 #include "cmm/collaborative_mixture_models.h"
 #include "cmm/partition.h"
@@ -11,13 +13,29 @@ namespace relmap::cmm {
 bool CollaborativeMixtureModels::TrySplit(int label, int index, UpdateReport& report) {
   if (components_[label][index].size() <= dimension()) return false;  // no tolerance ellipsoid yet
   if (!OverlapsOtherClass(label, index)) return false;
-  Component& c = components_[label][index];
+  std::optional<std::vector<Component>>& halves = components_[label][index].cached_split();
+  if (!halves) halves = SplitHalves(components_[label][index]);
+  if (halves->empty()) return false;  // the 1-NN graph is connected
+  // The cached halves themselves are evaluated, so that their columns are kept too.
+  if (!ImprovesLikelihood(label, {index}, *halves, report)) return false;
 
+  std::vector<Component> accepted = std::move(*halves);
+  auto& mixture = components_[label];
+  mixture[index] = std::move(accepted[0]);
+  mixture.push_back(std::move(accepted[1]));
+  RefreshWeights(label);
+  ++splits_;
+  ++report.splits;
+  return true;
+}
+
+std::vector<Component> CollaborativeMixtureModels::SplitHalves(Component& c) {
+  const int label = c.label();
   Eigen::MatrixXd points(dimension(), c.size());
   for (int j = 0; j < c.size(); ++j) points.col(j) = data_.sample(c.indices()[j]);
   const NearestNeighbourGraph& graph = c.NearestNeighbours(data_);
   const std::vector<int> group = PartitionInTwo(points, graph.nearest);
-  if (group.empty()) return false;  // the 1-NN graph is connected
+  if (group.empty()) return {};
 
   // Each half keeps its samples in the parent's order, and inherits the
   // parent's 1-NN graph: groups are unions of the graph's connected components.
@@ -37,15 +55,7 @@ bool CollaborativeMixtureModels::TrySplit(int label, int index, UpdateReport& re
     halves.push_back(Component::FromSamples(label, samples[h], data_, config_, prior_or_null()));
     halves.back().AdoptNearestNeighbours(std::move(halves_graph[h]));
   }
-  if (!ImprovesLikelihood(label, {index}, halves, report)) return false;
-
-  auto& mixture = components_[label];
-  mixture[index] = std::move(halves[0]);
-  mixture.push_back(std::move(halves[1]));
-  RefreshWeights(label);
-  ++splits_;
-  ++report.splits;
-  return true;
+  return halves;
 }
 
 }  // namespace relmap::cmm

@@ -168,5 +168,17 @@ TEST(Component, LogDensityColumnFollowsTheDatasetAndResetsOnChange) {
             c.LogDensityFromSquaredDistance(c.SquaredMahalanobis(data.sample(0))));
 }
 
+TEST(Component, SplitProposalIsForgottenWhenTheComponentChanges) {
+  Dataset data = MakeDataset({{0, 0}, {1, 0}, {0, 1}, {3, 3}});
+  const CmmConfig config = CmmConfig::ForVariant(Variant::kCorrectedV1);
+  Component c = Component::FromSamples(0, {{0, 1, 2}}, data, config);
+  EXPECT_FALSE(c.cached_split().has_value());  // nothing proposed yet
+  c.cached_split() = std::vector<Component>{};
+  Component copy = c;  // a copy keeps the proposal: same samples, same halves
+  EXPECT_TRUE(copy.cached_split().has_value());
+  c.AddSample(3, data, config);  // other samples: the halves would differ
+  EXPECT_FALSE(c.cached_split().has_value());
+}
+
 }  // namespace
 }  // namespace relmap::cmm

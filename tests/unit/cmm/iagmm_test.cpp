@@ -8,6 +8,7 @@
 
 #include "cmm/collaborative_mixture_models.h"
 #include "common/metrics.h"
+#include "common/random.h"
 #include "datasets/synthetic_problems.h"
 #include "support/cmm_training.h"
 
@@ -247,6 +248,27 @@ TEST(Iagmm, TenThousandSamples) {
   EXPECT_EQ(model.dataset().size(), 10000);
   EXPECT_TRUE(EverySampleInExactlyOneComponentOfItsClass(model));
   EXPECT_TRUE(model.Predict(data.features.topRows(100)).allFinite());
+}
+
+TEST(Iagmm, CandidateEvaluationsPerUpdateAreBoundedOnDataThatDoesNotCluster) {
+  // Uniform 48-d vectors with fair random labels: every component overlaps the
+  // other class, so every update tries to split and merge. An update runs SPLIT or
+  // MERGE three times (step 3, then the re-check of each class); each evaluates
+  // one split and at most max_merge_candidates merges: 3 · (1 + 4) = 15.
+  const CmmConfig config;
+  ASSERT_EQ(config.max_merge_candidates, 4);
+  auto model = CollaborativeMixtureModels::Create(config, 48).value();
+  Random random(5);
+  int most = 0;
+  for (int i = 0; i < 400; ++i) {
+    Eigen::VectorXd x(48);
+    for (Eigen::Index d = 0; d < x.size(); ++d) x[d] = random.UniformUnit();
+    const auto report = model.Add(x, static_cast<int>(random.UniformIndex(2)));
+    ASSERT_TRUE(report.ok());
+    most = std::max(most, report->candidates_evaluated);
+  }
+  EXPECT_LE(most, 3 * (1 + config.max_merge_candidates));
+  EXPECT_GT(most, 1);  // the data did make it try several candidates
 }
 
 TEST(Iagmm, RejectsBadSamplesAndStaysUnchanged) {
