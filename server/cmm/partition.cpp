@@ -27,15 +27,25 @@ class UnionFind {
   std::vector<int> parent_;
 };
 
+// Column j of a set of p-vectors: its first coordinate and the distance between
+// its coordinates (1 in a gathered matrix, the stride of a Dataset in place).
+struct PointView {
+  const double* first;
+  int stride;
+};
+
 // Agglomerates groups by closest centroids until two remain. `group` maps each
 // sample to a group id in [0, groups); returns the surviving group of each id.
-std::vector<int> MergeClosestCentroids(const Eigen::MatrixXd& points, const std::vector<int>& group,
+// `point(i)` is sample i's PointView.
+template <typename Points>
+std::vector<int> MergeClosestCentroids(const Points& point, int p, const std::vector<int>& group,
                                        int groups) {
-  const int p = static_cast<int>(points.rows());
   Eigen::MatrixXd centroid = Eigen::MatrixXd::Zero(p, groups);
   std::vector<double> count(groups, 0.0);
   for (int i = 0; i < static_cast<int>(group.size()); ++i) {
-    centroid.col(group[i]) += points.col(i);
+    const PointView x = point(i);
+    centroid.col(group[i]) += Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<>>(
+        x.first, p, Eigen::InnerStride<>(x.stride));
     count[group[i]] += 1.0;
   }
   for (int g = 0; g < groups; ++g) centroid.col(g) /= count[g];
@@ -100,14 +110,17 @@ double SquaredDistance(const double* a, int stride_a, const double* b, int strid
   return sum;
 }
 
-NearestNeighbourGraph NearestNeighbours(const Eigen::MatrixXd& points) {
-  const int n = static_cast<int>(points.cols());
-  const int p = static_cast<int>(points.rows());
+namespace {
+
+template <typename Points>
+NearestNeighbourGraph NearestNeighboursOf(const Points& point, int n, int p) {
   NearestNeighbourGraph graph{std::vector<int>(n, -1),
                               std::vector<double>(n, std::numeric_limits<double>::infinity())};
   for (int i = 0; i < n; ++i) {
+    const PointView a = point(i);
     for (int j = i + 1; j < n; ++j) {
-      const double d = SquaredDistance(points.col(i).data(), 1, points.col(j).data(), 1, p);
+      const PointView b = point(j);
+      const double d = SquaredDistance(a.first, a.stride, b.first, b.stride, p);
       if (d < graph.squared_distance[i]) graph.squared_distance[i] = d, graph.nearest[i] = j;
       if (d < graph.squared_distance[j]) graph.squared_distance[j] = d, graph.nearest[j] = i;
     }
@@ -115,8 +128,9 @@ NearestNeighbourGraph NearestNeighbours(const Eigen::MatrixXd& points) {
   return graph;
 }
 
-std::vector<int> PartitionInTwo(const Eigen::MatrixXd& points, const std::vector<int>& nearest) {
-  const int n = static_cast<int>(points.cols());
+template <typename Points>
+std::vector<int> PartitionInTwoOf(const Points& point, int n, int p,
+                                  const std::vector<int>& nearest) {
   if (n < 2) return {};
   UnionFind sets(n);
   for (int i = 0; i < n; ++i) sets.Join(i, nearest[i]);
@@ -132,11 +146,40 @@ std::vector<int> PartitionInTwo(const Eigen::MatrixXd& points, const std::vector
   }
   if (groups == 1) return {};
   if (groups > 2) {
-    const std::vector<int> survivor = MergeClosestCentroids(points, group, groups);
+    const std::vector<int> survivor = MergeClosestCentroids(point, p, group, groups);
     // Set 0 always survives (a merge keeps the lower id); the other survivor is group 1.
     for (int& g : group) g = survivor[g] == 0 ? 0 : 1;
   }
   return group;
+}
+
+}  // namespace
+
+NearestNeighbourGraph NearestNeighbours(const Eigen::MatrixXd& points) {
+  const int p = static_cast<int>(points.rows());
+  return NearestNeighboursOf(
+      [&](int j) {
+        return PointView{points.col(j).data(), 1};
+      },
+      static_cast<int>(points.cols()), p);
+}
+
+std::vector<int> PartitionInTwo(const Eigen::MatrixXd& points, const std::vector<int>& nearest) {
+  const int p = static_cast<int>(points.rows());
+  return PartitionInTwoOf(
+      [&](int j) {
+        return PointView{points.col(j).data(), 1};
+      },
+      static_cast<int>(points.cols()), p, nearest);
+}
+
+std::vector<int> PartitionInTwo(const Dataset& data, std::span<const int> indices,
+                                const std::vector<int>& nearest) {
+  return PartitionInTwoOf(
+      [&](int j) {
+        return PointView{data.data() + indices[j], data.stride()};
+      },
+      static_cast<int>(indices.size()), data.dimension(), nearest);
 }
 
 }  // namespace relmap::cmm

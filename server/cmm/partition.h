@@ -3,7 +3,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <span>
 #include <vector>
+
+#include "cmm/dataset.h"
 
 namespace relmap::cmm {
 
@@ -26,6 +29,11 @@ NearestNeighbourGraph NearestNeighbours(const Eigen::MatrixXd& points);
 // components are merged, closest centroids first (Euclidean), until two remain.
 // Ties go to the lower index, so the result is deterministic.
 std::vector<int> PartitionInTwo(const Eigen::MatrixXd& points, const std::vector<int>& nearest);
+// The same for the samples `indices` of `data`, read in place (the same bits): a
+// gathered copy per split proposal cost more than the centroids it feeds, the
+// allocator mapping fresh pages for each.
+std::vector<int> PartitionInTwo(const Dataset& data, std::span<const int> indices,
+                                const std::vector<int>& nearest);
 inline std::vector<int> PartitionInTwo(const Eigen::MatrixXd& points) {
   return PartitionInTwo(points, NearestNeighbours(points).nearest);
 }

@@ -1,6 +1,5 @@
 // SPLIT (§3.6): a component that overlaps the other class is cut in two along the
 // gaps of its 1-nearest-neighbour graph, if that raises the likelihood.
-#include <Eigen/Core>
 #include <array>
 #include <optional>
 #include <vector>
@@ -31,10 +30,8 @@ bool CollaborativeMixtureModels::TrySplit(int label, int index, UpdateReport& re
 
 std::vector<Component> CollaborativeMixtureModels::SplitHalves(Component& c) {
   const int label = c.label();
-  Eigen::MatrixXd points(dimension(), c.size());
-  for (int j = 0; j < c.size(); ++j) points.col(j) = data_.sample(c.indices()[j]);
   const NearestNeighbourGraph& graph = c.NearestNeighbours(data_);
-  const std::vector<int> group = PartitionInTwo(points, graph.nearest);
+  const std::vector<int> group = PartitionInTwo(data_, c.indices(), graph.nearest);
   if (group.empty()) return {};
 
   // Each half keeps its samples in the parent's order, and inherits the

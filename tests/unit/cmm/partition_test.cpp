@@ -41,6 +41,20 @@ TEST(PartitionInTwo, DuplicatePointsDoNotSplit) {
   EXPECT_TRUE(PartitionInTwo(points).empty());
 }
 
+TEST(PartitionInTwo, ReadsADatasetsSamplesInPlaceAsTheirGatheredCopy) {
+  // Three sets; the component holds samples 1..6 of the dataset, in a shuffled order.
+  const Eigen::MatrixXd all = Columns({{9, 9}, {0, 0}, {10, 0}, {0, 1}, {10, 1}, {4, 0}, {4, 1}});
+  Dataset data(2);
+  for (Eigen::Index j = 0; j < all.cols(); ++j) data.Append(all.col(j), 0);
+  const std::vector<int> indices{3, 1, 2, 6, 4, 5};
+  Eigen::MatrixXd gathered(2, 6);
+  for (int j = 0; j < 6; ++j) gathered.col(j) = all.col(indices[j]);
+  const std::vector<int> nearest = NearestNeighbours(gathered).nearest;
+  const std::vector<int> expected = PartitionInTwo(gathered, nearest);
+  ASSERT_FALSE(expected.empty());
+  EXPECT_EQ(PartitionInTwo(data, indices, nearest), expected);
+}
+
 TEST(PartitionInTwo, NeedsTwoPoints) { EXPECT_TRUE(PartitionInTwo(Columns({{1, 1}})).empty()); }
 
 }  // namespace
