@@ -86,16 +86,17 @@ TEST(Component, SingleSampleUsesTheUnitCovariance) {
 }
 
 TEST(Component, OnlineUpdatesMatchBatchStatistics) {
+  // 150 samples: the batch scatter is summed over two full blocks of 64 and a partial one.
   Random random(3);
   Dataset data(5);
-  for (int i = 0; i < 40; ++i) {
+  for (int i = 0; i < 150; ++i) {
     Eigen::VectorXd x(5);
     for (int k = 0; k < 5; ++k) x[k] = random.UniformUnit() * (k + 1);
     data.Append(x, 0);
   }
   const CmmConfig config = CmmConfig::ForVariant(Variant::kCorrectedV1);
   Component online = Component::FromSamples(0, {{0}}, data, config);
-  for (int i = 1; i < 40; ++i) online.AddSample(i, data, config);
+  for (int i = 1; i < 150; ++i) online.AddSample(i, data, config);
   const Component batch = Component::FromSamples(0, AllIndices(data), data, config);
   EXPECT_TRUE(online.mean().isApprox(batch.mean(), 1e-12));
   EXPECT_TRUE(online.scatter().isApprox(batch.scatter(), 1e-12));
