@@ -49,6 +49,9 @@ constexpr std::string_view kUsage =
     "  --metrics-listen  serve Prometheus metrics at http://ADDR/metrics (IPv4 host:port)\n"
     "  --snapshot-every  with --data-dir: store a model snapshot every N samples of a\n"
     "                session, so a restart relearns at most N (default 500; 0 never)\n"
+    "  --snapshot-after-learning-ms  with --data-dir: also one once the samples since the\n"
+    "                last took this long to learn, so a restart relearns about that long\n"
+    "                however large the session (default 500; 0 never)\n"
     "  --evict-idle-seconds  with --data-dir: drop sessions unused this long from memory;\n"
     "                they are loaded again on their next call (default 1800; 0 never)\n"
     "  --session-idle-expiry-seconds  delete sessions unused this long, from memory and\n"
@@ -82,6 +85,7 @@ constexpr std::string_view kSettings[] = {"listen",
                                           "evict-idle-seconds",
                                           "session-idle-expiry-seconds",
                                           "snapshot-every",
+                                          "snapshot-after-learning-ms",
                                           "metrics-listen",
                                           "metrics-port-file",
                                           "max-threads",
@@ -131,6 +135,8 @@ void Apply(ServerOptions& options, std::string_view name, const std::string& val
     options.frames_per_session = static_cast<std::size_t>(number());
   } else if (name == "snapshot-every") {
     options.snapshot_every = static_cast<std::size_t>(number());
+  } else if (name == "snapshot-after-learning-ms") {
+    options.snapshot_after_learning_ms = static_cast<long long>(number());
   } else if (name == "metrics-listen") {
     options.metrics_listen = value;
   } else if (name == "metrics-port-file") {
@@ -217,6 +223,9 @@ ServerOptions ParseServerOptions(int argc, char** argv) {
   }
   if (options.lease_seconds < 1) ExitWithError("relmap-server", "--lease-seconds must be >= 1");
   if (options.drain_seconds < 0) ExitWithError("relmap-server", "--drain-seconds must be >= 0");
+  if (options.snapshot_after_learning_ms < 0) {
+    ExitWithError("relmap-server", "--snapshot-after-learning-ms must be >= 0");
+  }
   if (options.session_idle_expiry_seconds < 0) {
     ExitWithError("relmap-server", "--session-idle-expiry-seconds must be >= 0");
   }

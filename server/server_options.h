@@ -30,6 +30,8 @@ struct ServerOptions {
   std::string tls_key;
   int max_threads = 16;
   std::size_t snapshot_every = 500;
+  // Also a snapshot once the samples since the last took this long to learn (0: never).
+  long long snapshot_after_learning_ms = 500;
   long long evict_idle_seconds = 1800;
   // Sessions unused this long are deleted, from memory and from the store (0: never).
   long long session_idle_expiry_seconds = 0;

@@ -32,7 +32,9 @@ std::unique_ptr<session::SessionRegistry> BuildRegistry(const ServerOptions& opt
   auto registry = std::make_unique<session::SessionRegistry>(options.max_sessions, store,
                                                              service::SettingsOfStoredSession);
   registry->set_policy(
-      {.snapshot_every = options.snapshot_every, .frame_cache = options.frames_per_session});
+      {.snapshot_every = options.snapshot_every,
+       .snapshot_after_learning = std::chrono::milliseconds(options.snapshot_after_learning_ms),
+       .frame_cache = options.frames_per_session});
   return registry;
 }
 

@@ -233,13 +233,19 @@ Status Session::PersistAndLearn(const std::string& request_id, const Eigen::Vect
                            " samples, the model " + std::to_string(learned));
     }
   }
+  const auto start = std::chrono::steady_clock::now();
   auto added = model_.Add(x, label);
   if (!added.ok()) return added.status();
+  learning_since_snapshot_ += std::chrono::steady_clock::now() - start;
   const auto learned = static_cast<std::size_t>(model_.dataset().size());
-  if (store_ != nullptr && policy_.snapshot_every > 0 && learned % policy_.snapshot_every == 0) {
+  const bool every = policy_.snapshot_every > 0 && learned % policy_.snapshot_every == 0;
+  const bool after_learning = policy_.snapshot_after_learning.count() > 0 &&
+                              learning_since_snapshot_ >= policy_.snapshot_after_learning;
+  if (store_ != nullptr && (every || after_learning)) {
     // A failed snapshot loses nothing (the samples are the record): log-worthy,
     // not an error of this call.
     (void)store_->SaveSnapshot(id_, model_.Snapshot(), static_cast<std::int64_t>(learned));
+    learning_since_snapshot_ = {};
   }
   return OkStatus();
 }

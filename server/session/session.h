@@ -154,6 +154,8 @@ class Session {
   std::uint64_t frames_ = 0;
   std::uint64_t interactions_ = 0;
   SessionPolicy policy_;
+  // Time spent in model updates since the last snapshot (SessionPolicy).
+  std::chrono::steady_clock::duration learning_since_snapshot_{};
   std::deque<MappedFrame> frames_cache_;
   // Remembers the answer under `request_id`, forgetting the oldest beyond
   // kRememberedAnswers (with a store, older retries are still not learned twice:

@@ -2,6 +2,7 @@
 // struct per layer, their defaults the paper's values.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 
 #include "cmm/config.h"
@@ -26,6 +27,11 @@ struct SessionPolicy {
   // With a store: a model snapshot every this many learned samples, so that a restart
   // replays at most that many (0: never).
   std::size_t snapshot_every = 0;
+  // With a store: also a snapshot once the samples learned since the last one took
+  // this long to learn (0: never), so that a restart relearns about this much
+  // whatever the model's size: an update's cost grows with the dataset, so a fixed
+  // count of samples to replay does not bound the time of a restore.
+  std::chrono::nanoseconds snapshot_after_learning{0};
   // Frames kept for PostOutcome (at least 1); older ones are evicted first.
   std::size_t frame_cache = 8;
 };

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -203,6 +204,27 @@ TEST_F(StoredRegistry, ASessionInUseOrUsedSinceTheCutoffStaysInMemory) {
   recent->session.reset();
   EXPECT_TRUE(registry_->EvictIdle(50).empty());
   EXPECT_EQ(registry_->Resident().size(), 2u);
+}
+
+TEST_F(StoredRegistry, ASnapshotIsStoredOnceLearningSinceTheLastTookThePolicysTime) {
+  // 1 ns: every update takes longer; an hour: none does (no timing is asserted).
+  for (const auto budget :
+       {std::chrono::nanoseconds(1), std::chrono::nanoseconds(std::chrono::hours(1))}) {
+    registry_->set_policy({.snapshot_every = 0, .snapshot_after_learning = budget});
+    const std::string id = CreateOne(*registry_);
+    auto session = registry_->Find(id);
+    ASSERT_TRUE(session.ok());
+    ASSERT_TRUE(
+        (*session)->AddSamples(Eigen::MatrixXd::Ones(3, kDimension), {1, 0, 1}, "r", 10).ok());
+    const auto snapshot = store_->LoadLatestSnapshot(id);
+    ASSERT_TRUE(snapshot.ok());
+    if (budget == std::chrono::nanoseconds(1)) {
+      ASSERT_TRUE(snapshot->has_value());
+      EXPECT_EQ((*snapshot)->sample_count, 3);
+    } else {
+      EXPECT_FALSE(snapshot->has_value());
+    }
+  }
 }
 
 TEST_F(StoredRegistry, ADeletedSessionIsGoneFromTheStoreToo) {
