@@ -1,9 +1,10 @@
 // The classifier's learning cost as the dataset grows (docs/reliability.md,
 // "Learning cost"): CPU time per IAGMM update in the window of samples before
 // each checkpoint n, the candidate models evaluated per update, and the time to
-// restore the model from its snapshot at n. Streams: uniform random 48-d
-// vectors with fair random labels (data that does not cluster) and built-in
-// streams of the learning benchmark (structured 48-d data), e.g.
+// restore the model at n as a server does (its latest snapshot, then the samples
+// after it relearned) under the two snapshot policies of SessionPolicy. Streams:
+// uniform random 48-d vectors with fair random labels (data that does not
+// cluster) and the learning benchmark's built-in streams (structured 48-d data):
 //   build/tests/benchmarks/learning_cost_probe --streams random48,xor48-unit-range
 // CPU time of this thread, not wall time: the figure does not depend on what
 // else runs on the machine.
@@ -13,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -120,6 +122,26 @@ datasets::LabelledSamples MakeSamples(const std::string& name, int count, std::u
   return learning_bench::MakeStream(*spec, {.train = count, .test = 1}, seed, 0).train;
 }
 
+// A snapshot as a session stores it: the model after its first `count` samples.
+struct StoredModel {
+  CmmSnapshot snapshot;
+  int count = 0;
+};
+
+// CPU ms to bring a stored session back as the server does (session_restore.cpp):
+// the model from its snapshot, then the samples after it relearned.
+double RestoreMilliseconds(const StoredModel& stored, const datasets::LabelledSamples& samples,
+                           int count) {
+  const double start = ThreadCpuMilliseconds();
+  auto restored = CollaborativeMixtureModels::Restore(stored.snapshot);
+  if (!restored.ok()) Fail(restored.status().message());
+  for (int i = stored.count; i < count; ++i) {
+    (void)restored->Add(samples.features.row(i).transpose(),
+                        samples.labels[static_cast<std::size_t>(i)]);
+  }
+  return ThreadCpuMilliseconds() - start;
+}
+
 void Probe(const std::string& name, const Options& options) {
   const int total = options.checkpoints.back();
   const datasets::LabelledSamples samples = MakeSamples(name, total, options.seed);
@@ -131,15 +153,31 @@ void Probe(const std::string& name, const Options& options) {
   std::vector<int> candidates;
   update_ms.reserve(static_cast<std::size_t>(total));
   candidates.reserve(static_cast<std::size_t>(total));
+  // The two snapshot policies of a server (SessionPolicy): every 500 samples, at
+  // its worst 499 samples before the checkpoint; and after 0.5 s of learning.
+  constexpr int kSnapshotEvery = 500;
+  constexpr double kSnapshotAfterMs = 500.0;
+  std::map<int, StoredModel> every_worst;  // per checkpoint
+  StoredModel after_learning{model->Snapshot(), 0};
+  double learning_since_snapshot_ms = 0.0;
   std::size_t next_checkpoint = 0;
   for (int i = 0; i < total; ++i) {
+    for (const int c : options.checkpoints) {
+      if (i == std::max(0, c - (kSnapshotEvery - 1))) every_worst[c] = {model->Snapshot(), i};
+    }
+    const int checkpoint = options.checkpoints[next_checkpoint];
     const double start = ThreadCpuMilliseconds();
     const auto report = model->Add(samples.features.row(i).transpose(),
                                    samples.labels[static_cast<std::size_t>(i)]);
     update_ms.push_back(ThreadCpuMilliseconds() - start);
     if (!report.ok()) Fail(report.status().message());
     candidates.push_back(report->candidates_evaluated);
-    if (i + 1 != options.checkpoints[next_checkpoint]) continue;
+    learning_since_snapshot_ms += update_ms.back();
+    if (learning_since_snapshot_ms >= kSnapshotAfterMs) {
+      after_learning = {model->Snapshot(), i + 1};
+      learning_since_snapshot_ms = 0.0;
+    }
+    if (i + 1 != checkpoint) continue;
     ++next_checkpoint;
 
     const auto first = update_ms.end() - options.window;
@@ -152,29 +190,18 @@ void Probe(const std::string& name, const Options& options) {
     for (auto it = candidates_first; it != candidates.end(); ++it) candidates_total += *it;
     const int candidates_max = *std::max_element(candidates_first, candidates.end());
 
-    // The restore a server does for a stored session: the model from its snapshot,
-    // then the first update, which computes every cached density afresh.
-    const CmmSnapshot snapshot = model->Snapshot();
-    const double restore_start = ThreadCpuMilliseconds();
-    auto restored = CollaborativeMixtureModels::Restore(snapshot);
-    if (!restored.ok()) Fail(restored.status().message());
-    const double restore_ms = ThreadCpuMilliseconds() - restore_start;
-    const int next = std::min(i + 1, total - 1);
-    const double first_update_start = ThreadCpuMilliseconds();
-    (void)restored->Add(samples.features.row(next).transpose(),
-                        samples.labels[static_cast<std::size_t>(next)]);
-    const double first_update_ms = ThreadCpuMilliseconds() - first_update_start;
-
     fmt::print(
-        "{:<18} n={:<5} K={:>2}+{:<3} L={:<12.6g} update ms/sample: mean {:7.2f}  p50 {:7.2f}  p99 "
-        "{:8.2f}  "
-        "max {:8.2f} | candidates/update: mean {:5.2f} max {:2} | restore {:7.1f} ms + first "
-        "update {:7.1f} ms\n",
+        "{:<18} n={:<5} K={:>2}+{:<3} L={:<12.6g} update ms: mean {:6.2f} p50 {:6.2f} p99 {:7.2f} "
+        "max {:7.2f} | candidates: mean {:5.2f} max {:2} | restore ms: snapshot of n {:6.1f}, "
+        "every 500 (worst, +{} samples) {:8.1f}, after 0.5 s (+{}) {:7.1f}\n",
         name, i + 1, model->component_count(0), model->component_count(1), model->LogLikelihood(),
         window_total / options.window, window[window.size() / 2],
         window[static_cast<std::size_t>(0.99 * static_cast<double>(window.size() - 1))],
-        window.back(), candidates_total / options.window, candidates_max, restore_ms,
-        first_update_ms);
+        window.back(), candidates_total / options.window, candidates_max,
+        RestoreMilliseconds({model->Snapshot(), i + 1}, samples, i + 1),
+        i + 1 - every_worst[checkpoint].count,
+        RestoreMilliseconds(every_worst[checkpoint], samples, i + 1), i + 1 - after_learning.count,
+        RestoreMilliseconds(after_learning, samples, i + 1));
     std::fflush(stdout);
   }
 }
