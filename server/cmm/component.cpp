@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 
+#include "cmm/log_math.h"
 #include "cmm/whitened_distance.h"
 
 namespace relmap::cmm {
@@ -19,8 +20,6 @@ constexpr double kPseudoInverseCutoff = 1e-4;  // singular values kept in pinv(�
 constexpr double kHitRadiusSquared = 1e-4;  // ‖x − μ‖² inside which a kHit component fires
 constexpr double kHitScatterSquaredNorm = 1e-4;
 constexpr int kHitMaxSize = 4;
-
-const double kLogTwoPi = std::log(2.0 * std::numbers::pi);
 
 }  // namespace
 
