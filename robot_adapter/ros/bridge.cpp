@@ -26,6 +26,16 @@ StatusOr<pcd::Points> PointsToSend(const CloudMessage& cloud,
   return points;
 }
 
+// `outcome` (its frame and supervoxel) as the server answered it.
+OutcomeAnswer Answer(OutcomeAnswer outcome, const v1::PostOutcomeResponse& response,
+                     bool from_after_cloud) {
+  outcome.moved = response.label() == v1::LABEL_MOVEABLE;
+  outcome.from_after_cloud = from_after_cloud;
+  outcome.moveable_samples = response.stats().moveable_samples();
+  outcome.non_moveable_samples = response.stats().non_moveable_samples();
+  return outcome;
+}
+
 }  // namespace
 
 Bridge::Bridge(BridgeConfig config)
@@ -117,14 +127,7 @@ StatusOr<OutcomeAnswer> Bridge::PostLabel(Stamp stamp, std::uint32_t supervoxel_
       found->outcome_posted = true;
     }
   }
-  return OutcomeAnswer{stamp,
-                       frame.frame,
-                       frame.frame_id,
-                       supervoxel_id,
-                       response.label() == v1::LABEL_MOVEABLE,
-                       false,
-                       response.stats().moveable_samples(),
-                       response.stats().non_moveable_samples()};
+  return Answer({stamp, frame.frame, frame.frame_id, supervoxel_id}, response, false);
 }
 
 StatusOr<OutcomeAnswer> Bridge::PostAfter(const Frame& frame, std::uint32_t target,
@@ -138,14 +141,7 @@ StatusOr<OutcomeAnswer> Bridge::PostAfter(const Frame& frame, std::uint32_t targ
                                             PackPoints(*points), "", &response),
                        "PostOutcome");
   if (!status.ok()) return status;
-  return OutcomeAnswer{frame.stamp,
-                       frame.frame,
-                       frame.frame_id,
-                       target,
-                       response.label() == v1::LABEL_MOVEABLE,
-                       true,
-                       response.stats().moveable_samples(),
-                       response.stats().non_moveable_samples()};
+  return Answer({frame.stamp, frame.frame, frame.frame_id, target}, response, true);
 }
 
 StatusOr<OutcomeAnswer> Bridge::PostAfterCloud(const CloudMessage& after,

@@ -37,10 +37,10 @@ diagnostic_msgs::KeyValue KeyValue(const std::string& key, const std::string& va
 
 }  // namespace
 
-RosBridgeNode::RosBridgeNode(ros::NodeHandle node, ros::NodeHandle private_node,
+RosBridgeNode::RosBridgeNode(const ros::NodeHandle& node, const ros::NodeHandle& private_node,
                              NodeSettings settings)
-    : node_(std::move(node)),
-      private_node_(std::move(private_node)),
+    : node_(node),
+      private_node_(private_node),
       settings_(std::move(settings)),
       bridge_(settings_.bridge) {}
 

@@ -28,7 +28,8 @@ namespace relmap::ros_bridge {
 
 class RosBridgeNode {
  public:
-  RosBridgeNode(ros::NodeHandle node, ros::NodeHandle private_node, NodeSettings settings);
+  RosBridgeNode(const ros::NodeHandle& node, const ros::NodeHandle& private_node,
+                NodeSettings settings);
   ~RosBridgeNode();
   RosBridgeNode(const RosBridgeNode&) = delete;
   RosBridgeNode& operator=(const RosBridgeNode&) = delete;

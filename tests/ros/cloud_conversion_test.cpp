@@ -30,7 +30,7 @@ CloudMessage DoublesWithRgba(const std::vector<std::array<double, 3>>& xyz,
   cloud.data.resize(cloud.row_step);
   for (std::size_t i = 0; i < xyz.size(); ++i) {
     for (int axis = 0; axis < 3; ++axis) {
-      PutBytes(&xyz[i][axis], 8, &cloud.data, i * 32 + 8 * axis);
+      PutBytes(&xyz[i][axis], 8, &cloud.data, i * 32 + std::size_t{8} * axis);
     }
     PutBytes(&argb[i], 4, &cloud.data, i * 32 + 28);
   }
@@ -67,7 +67,7 @@ TEST(DecodeCloudMessage, SkipsRowPaddingOfAnOrganizedCloud) {
   // Each row padded by 8 bytes, as some drivers align rows.
   std::vector<std::uint8_t> padded;
   for (std::uint32_t row = 0; row < 2; ++row) {
-    const auto* begin = cloud.data.data() + row * cloud.row_step;
+    const auto* begin = cloud.data.data() + std::size_t{row} * cloud.row_step;
     padded.insert(padded.end(), begin, begin + cloud.row_step);
     padded.insert(padded.end(), 8, 0xee);
   }
