@@ -7,6 +7,8 @@
 #include <relmap_ros/Outcome.h>
 #include <relmap_ros/PostOutcome.h>
 #include <relmap_ros/Push.h>
+#include <sys/wait.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <visualization_msgs/Marker.h>
 
 #include <algorithm>
@@ -182,6 +184,71 @@ TEST_F(RosBridgeTest, PublishesTheMapsAndTargetOfARealKinectFrame) {
     return false;
   });
   EXPECT_TRUE(mapped) << "diagnostics count the frame";
+}
+
+TEST_F(RosBridgeTest, MovesCloudsIntoTheWorkspaceFrameWithTf2) {
+  // "table" is "kinect" turned half a turn about x and lifted by 20 m:
+  // (x, y, z) → (x, −y, 20 − z).
+  tf2_ros::StaticTransformBroadcaster broadcaster;
+  geometry_msgs::TransformStamped table;
+  table.header.stamp = ros::Time(1, 0);
+  table.header.frame_id = "table";
+  table.child_frame_id = "kinect";
+  table.transform.rotation.x = 1.0;
+  table.transform.translation.z = 20.0;
+  broadcaster.sendTransform(table);
+  StartBridge({"workspace_frame:=table"});
+  Inbox<Cloud2> relevance(*node_, Private("relevance"));
+  Inbox<geometry_msgs::PoseStamped> target(*node_, Private("target"));
+  Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*node_, "/diagnostics");
+  ASSERT_TRUE(relevance.Connected() && target.Connected());
+
+  sensor_msgs::PointCloud2 elsewhere = *second_;
+  elsewhere.header.frame_id = "nowhere";
+  cloud_publisher_.publish(elsewhere);
+  const auto refused = diagnostics.WaitFor([](const diagnostic_msgs::DiagnosticArray& array) {
+    return !array.status.empty() &&
+           array.status[0].message.find("no transform from nowhere to table") != std::string::npos;
+  });
+  EXPECT_TRUE(refused) << relmap::testing::ReadFile(bridge_->log_path());
+
+  cloud_publisher_.publish(*first_);
+  const auto map = relevance.WaitFor(StampedAs(*first_));
+  ASSERT_TRUE(map) << relmap::testing::ReadFile(bridge_->log_path());
+  EXPECT_EQ(map->header.frame_id, "table");
+  const auto pose = target.WaitFor(StampedAs(*first_));
+  ASSERT_TRUE(pose);
+  EXPECT_EQ(pose->header.frame_id, "table");
+  // A Kinect sees 0.5 to at most 10 m ahead (camera z): moved, every point has
+  // 10 < z < 20, where none of the camera's own coordinates can be.
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < map->width; ++i) {
+    const auto z = ValueAt<float>(*map, i, "z");
+    if (z > 10.0F && z < 20.0F) ++moved;
+  }
+  EXPECT_EQ(moved, map->width);
+  EXPECT_GT(pose->pose.position.z, 10.0);
+  EXPECT_LT(pose->pose.position.z, 20.0);
+  EXPECT_FALSE(relevance.WaitFor(StampedAs(elsewhere), 0)) << "the untransformable cloud";
+}
+
+TEST_F(RosBridgeTest, RefusesABadParameterNamingIt) {
+  ChildProcess bridge({RELMAP_ROS_BRIDGE_BINARY, "__name:=" + name_, "_max_pushes:=-1"},
+                      directory_.path() + "/bad.log");
+  for (int waited = 0; bridge.Running() && waited < 400; ++waited) ros::Duration(0.05).sleep();
+  ASSERT_FALSE(bridge.Running());
+  EXPECT_EQ(WEXITSTATUS(bridge.wait_status()), 2);
+  EXPECT_NE(relmap::testing::ReadFile(directory_.path() + "/bad.log")
+                .find("~max_pushes must be 0 (no limit) or more, not -1"),
+            std::string::npos);
+  ChildProcess typed({RELMAP_ROS_BRIDGE_BINARY, "__name:=" + name_ + "_typed", "_seed:=one"},
+                     directory_.path() + "/typed.log");
+  for (int waited = 0; typed.Running() && waited < 400; ++waited) ros::Duration(0.05).sleep();
+  ASSERT_FALSE(typed.Running());
+  EXPECT_EQ(WEXITSTATUS(typed.wait_status()), 2);
+  EXPECT_NE(
+      relmap::testing::ReadFile(directory_.path() + "/typed.log").find("~seed must be an integer"),
+      std::string::npos);
 }
 
 TEST_F(RosBridgeTest, PostOutcomeLearnsAndRefusesBadRequestsWithMessages) {

@@ -60,6 +60,7 @@ bool ChildProcess::Running() {
   int status = 0;
   if (::waitpid(pid_, &status, WNOHANG) == pid_) {
     pid_ = -1;
+    wait_status_ = status;
     return false;
   }
   return true;
@@ -72,6 +73,7 @@ int ChildProcess::Stop() {
   for (int waited = 0; waited < 1000; ++waited) {
     if (::waitpid(pid_, &status, WNOHANG) == pid_) {
       pid_ = -1;
+      wait_status_ = status;
       return status;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -79,6 +81,7 @@ int ChildProcess::Stop() {
   ::kill(pid_, SIGKILL);
   ::waitpid(pid_, &status, 0);
   pid_ = -1;
+  wait_status_ = status;
   return status;
 }
 

@@ -27,12 +27,15 @@ class ChildProcess {
   ChildProcess& operator=(const ChildProcess&) = delete;
 
   bool Running();
+  // How it ended, once Running() or Stop() has seen it end.
+  int wait_status() const { return wait_status_; }
   // The wait status, or -1 when it had already been reaped.
   int Stop();
   const std::string& log_path() const { return log_path_; }
 
  private:
   pid_t pid_ = -1;
+  int wait_status_ = -1;
   std::string log_path_;
 };
 
