@@ -172,8 +172,8 @@ StatusOr<OutcomeAnswer> Bridge::PostAfterCloud(const CloudMessage& after,
   return answer;
 }
 
-StatusOr<CloudStep> Bridge::OnCloud(const CloudMessage& cloud,
-                                    const std::optional<RigidTransform>& to_workspace) {
+CloudStep Bridge::OnCloud(const CloudMessage& cloud,
+                          const std::optional<RigidTransform>& to_workspace) {
   CloudStep step;
   std::optional<Frame> pushed;
   {
@@ -184,9 +184,7 @@ StatusOr<CloudStep> Bridge::OnCloud(const CloudMessage& cloud,
     }
   }
   if (pushed) step.after_outcome = PostAfter(*pushed, *pushed->target, cloud, to_workspace);
-  StatusOr<FrameMaps> maps = Map(cloud, to_workspace);
-  if (!maps.ok()) return maps.status();
-  step.maps = std::move(*maps);
+  step.maps = Map(cloud, to_workspace);
   return step;
 }
 

@@ -56,10 +56,11 @@ struct PushReply {
 };
 
 // A cloud of the push loop: the outcome it carried as the last push's after cloud
-// (when the push left the label to the change detector), and its maps.
+// (when the push left the label to the change detector), and its maps. Each may have
+// failed on its own: a learned outcome is reported even when the maps fail.
 struct CloudStep {
   std::optional<StatusOr<OutcomeAnswer>> after_outcome;
-  FrameMaps maps;
+  StatusOr<FrameMaps> maps = Status(StatusCode::kUnknown, "not mapped");
 };
 
 class Bridge {
@@ -91,8 +92,7 @@ class Bridge {
 
   // The push loop. A cloud: first the after cloud of the last push, when one is
   // awaited, then its maps.
-  StatusOr<CloudStep> OnCloud(const CloudMessage& cloud,
-                              const std::optional<RigidTransform>& to_workspace);
+  CloudStep OnCloud(const CloudMessage& cloud, const std::optional<RigidTransform>& to_workspace);
   // Whether the push loop pushes `maps`' target: it has one and pushes are left.
   // Counts the push.
   bool TakePush(const FrameMaps& maps);

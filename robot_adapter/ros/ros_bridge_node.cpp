@@ -140,16 +140,16 @@ StatusOr<std::optional<RigidTransform>> RosBridgeNode::ToWorkspace(const std_msg
 void RosBridgeNode::Process(const sensor_msgs::PointCloud2& cloud) {
   StatusOr<std::optional<RigidTransform>> transform = ToWorkspace(cloud.header);
   if (!transform.ok()) return NoteError("cloud", transform.status());
-  StatusOr<CloudStep> step = bridge_.OnCloud(FromRos(cloud), *transform);
-  if (step.ok() && step->after_outcome) {
-    if (step->after_outcome->ok()) {
-      Announce(**step->after_outcome);
+  CloudStep step = bridge_.OnCloud(FromRos(cloud), *transform);
+  if (step.after_outcome) {
+    if (step.after_outcome->ok()) {
+      Announce(**step.after_outcome);
     } else {
-      NoteError("after-push cloud", step->after_outcome->status());
+      NoteError("after-push cloud", step.after_outcome->status());
     }
   }
-  if (!step.ok()) return NoteError("cloud", step.status());
-  const FrameMaps& maps = step->maps;
+  if (!step.maps.ok()) return NoteError("cloud", step.maps.status());
+  const FrameMaps& maps = *step.maps;
   ++mapped_;
   last_server_ms_ = maps.server_ms;
   if (maps.sent) Record(bag_cloud_topic_, ToRos(*maps.sent));
