@@ -35,13 +35,15 @@ def free_port():
         return s.getsockname()[1]
 
 
-def wait_for(predicate, seconds, what):
+def wait_for(predicate, seconds, what, log_path):
     deadline = time.monotonic() + seconds
     while time.monotonic() < deadline:
         if predicate():
             return
         time.sleep(0.05)
-    sys.exit(f"check_rviz_config: {what} within {seconds} s")
+    with open(log_path) as log:
+        tail = log.read()[-4000:]
+    sys.exit(f"check_rviz_config: {what} within {seconds} s; the processes said:\n{tail}")
 
 
 def rviz_topics(path):
@@ -61,9 +63,15 @@ def rviz_topics(path):
 
 
 def main():
-    package_dir, server_binary = sys.argv[1], sys.argv[2]
-    os.environ["ROS_PACKAGE_PATH"] = package_dir + os.pathsep + os.environ.get("ROS_PACKAGE_PATH", "")
     work = tempfile.mkdtemp(prefix="relmap-rviz-check-")
+    try:
+        check(sys.argv[1], sys.argv[2], work)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def check(package_dir, server_binary, work):
+    os.environ["ROS_PACKAGE_PATH"] = package_dir + os.pathsep + os.environ.get("ROS_PACKAGE_PATH", "")
     os.environ["ROS_HOME"] = work
     port = free_port()
     os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
@@ -85,16 +93,17 @@ def main():
     camera_topic = config.params[name + "/cloud_topic"].value
 
     children = []
-    log = open(os.path.join(work, "processes.log"), "w")
+    log_path = os.path.join(work, "processes.log")
+    log = open(log_path, "w")
     try:
         children.append(subprocess.Popen(["rosmaster", "--core", "-p", str(port)], stdout=log, stderr=log))
         master = rosgraph.Master("/check_rviz_config")
-        wait_for(master.is_online, 20, "rosmaster did not come up")
+        wait_for(master.is_online, 20, "rosmaster did not come up", log_path)
         port_file = os.path.join(work, "port")
         children.append(subprocess.Popen([server_binary, "--listen", "127.0.0.1:0", "--port-file", port_file],
                                          stdout=log, stderr=log))
         wait_for(lambda: os.path.exists(port_file) and open(port_file).read().strip(), 20,
-                 "relmap-server did not write its port")
+                 "relmap-server did not write its port", log_path)
         for key, param in config.params.items():
             master.setParam(key, param.value)
         master.setParam(name + "/server", "127.0.0.1:" + open(port_file).read().strip())
@@ -107,7 +116,7 @@ def main():
             except rosgraph.MasterError:
                 return False
 
-        wait_for(advertised, 20, f"{name} did not advertise post_outcome")
+        wait_for(advertised, 20, f"{name} did not advertise post_outcome", log_path)
         state = master.getSystemState()[0]  # publishers: [topic, [nodes]]
         types = dict(master.getTopicTypes())
         published = {topic: types[topic] for topic, nodes in state if name in nodes}
@@ -137,7 +146,6 @@ def main():
             errors.append(f"{name} publishes {topic} ({message_type}), which no display shows")
     if errors:
         sys.exit("check_rviz_config:\n  " + "\n  ".join(errors))
-    shutil.rmtree(work)
     maps = sorted(t for t, m in published.items() if m in DISPLAY_TYPES.values())
     print(f"check_rviz_config: {rviz} shows {', '.join(maps)} as {name} publishes them")
 
