@@ -12,7 +12,7 @@ namespace {
 
 constexpr std::string_view kProgram = "relmap-chaos";
 constexpr std::string_view kUsage =
-    "usage: relmap-chaos [--store sqlite|postgres|cluster] [--cycles 20] [--sessions 8]\n"
+    "usage: relmap-chaos [--store sqlite|postgres|cluster|memory] [--cycles 20] [--sessions 8]\n"
     "                    [--writes-per-cycle 3] [--samples-per-batch 4] [--seed 1]\n"
     "                    [--synthetic 160x120] [--server-binary PATH] [--directory DIR]\n"
     "  kill -9 of a relmap-server, --cycles times, while --sessions sessions (one thread\n"
@@ -22,7 +22,9 @@ constexpr std::string_view kUsage =
     "  exported samples are checked against what the server acknowledged.\n"
     "  --store       sqlite: one server on its SQLite file; postgres: one server on a\n"
     "                throw-away PostgreSQL; cluster: two servers on it behind nginx, the\n"
-    "                cycles killing each in turn\n"
+    "                cycles killing the one serving a session caught mid-write;\n"
+    "                memory: one server without a store, which loses everything at a\n"
+    "                restart (the check's negative control: the run must fail)\n"
     "  --writes-per-cycle  writes every session has acknowledged between two kills\n"
     "  --directory   keep the store and the logs there (default: a temporary directory,\n"
     "                removed unless something was lost)\n"
@@ -49,7 +51,8 @@ StoreKind StoreNamed(const std::string& name) {
   if (name == "sqlite") return StoreKind::kSqlite;
   if (name == "postgres") return StoreKind::kPostgres;
   if (name == "cluster") return StoreKind::kCluster;
-  Usage("--store expects sqlite, postgres or cluster, got '" + name + "'");
+  if (name == "memory") return StoreKind::kMemory;
+  Usage("--store expects sqlite, postgres, cluster or memory, got '" + name + "'");
 }
 
 }  // namespace

@@ -11,6 +11,9 @@ enum class StoreKind {
   kSqlite,    // one relmap-server on its SQLite file (--data-dir)
   kPostgres,  // one relmap-server on a PostgreSQL database
   kCluster,   // two relmap-servers sharing PostgreSQL behind nginx (deploy/nginx)
+  // One relmap-server without a store: a restart loses every session, so a run must
+  // report losses and fail. The check's negative control.
+  kMemory,
 };
 
 struct ChaosOptions {

@@ -38,6 +38,8 @@ const char* StoreName(StoreKind kind) {
       return "postgres";
     case StoreKind::kCluster:
       return "cluster";
+    case StoreKind::kMemory:
+      return "memory";
   }
   return "?";
 }
@@ -83,15 +85,29 @@ bool WaitForProgress(const Drivers& drivers, const std::vector<std::uint64_t>& s
   }
 }
 
-// Waits (at most 2 s) until a session has a write on the wire; how many have then.
-int WaitForAWrite(const Drivers& drivers) {
+// Waits (at most 2 s) until a session has a write on the wire; the sessions writing
+// then (none if the wait ran out).
+std::vector<const SessionDriver*> WaitForAWrite(const Drivers& drivers) {
   const Clock::time_point give_up = Clock::now() + std::chrono::seconds(2);
   for (;;) {
-    int writing = 0;
-    for (const auto& driver : drivers) writing += driver->writing() ? 1 : 0;
-    if (writing > 0 || Clock::now() >= give_up) return writing;
+    std::vector<const SessionDriver*> writing;
+    for (const auto& driver : drivers) {
+      if (driver->writing()) writing.push_back(driver.get());
+    }
+    if (!writing.empty() || Clock::now() >= give_up) return writing;
     std::this_thread::sleep_for(std::chrono::microseconds(50));
   }
+}
+
+// The server to kill: the one serving the first session caught writing (a cluster's
+// servers each own some sessions), else each in turn.
+int VictimOf(const ServerFleet& fleet, const std::vector<const SessionDriver*>& writing,
+             int cycle) {
+  if (!writing.empty()) {
+    if (const int owner = fleet.LastServing(writing.front()->session().id); owner >= 0)
+      return owner;
+  }
+  return (cycle - 1) % fleet.servers();
 }
 
 double SecondsSince(Clock::time_point start) {
@@ -129,8 +145,9 @@ bool RunCycles(const ChaosOptions& options, ServerFleet& fleet, const Drivers& d
     // then the first moment a write is on the wire (a commit takes milliseconds, a
     // ComputeMaps tens of them: a kill at a random moment mostly meets maps).
     std::this_thread::sleep_for(std::chrono::microseconds(pauses.UniformIndex(250000)));
-    const int in_flight = WaitForAWrite(drivers);
-    const int victim = (cycle - 1) % fleet.servers();
+    const std::vector<const SessionDriver*> writing = WaitForAWrite(drivers);
+    const int in_flight = static_cast<int>(writing.size());
+    const int victim = VictimOf(fleet, writing, cycle);
     const std::vector<std::uint64_t> at_kill = WritesOf(drivers);
     const Clock::time_point killed = Clock::now();
     fleet.Kill(victim);
@@ -140,14 +157,14 @@ bool RunCycles(const ChaosOptions& options, ServerFleet& fleet, const Drivers& d
                     serving.status().message());
       return false;
     }
-    if (!WaitForProgress(drivers, at_kill, 1)) return false;
-    const double writing_again = SecondsSince(killed);
     figures.cycles = cycle;
     figures.writes_in_flight_at_kills += in_flight;
     figures.serving_seconds.push_back(*serving);
+    if (!WaitForProgress(drivers, at_kill, 1)) return false;
+    const double writing_again = SecondsSince(killed);
     figures.writing_again_seconds.push_back(writing_again);
     std::printf(
-        "cycle %d/%d: kill -9 of server %d with %d of %zu sessions mid-write; serving again "
+        "cycle %d/%d: kill -9 of server %d with %d of %zu sessions mid-write; it serves again "
         "%.2f s after its start, every session writing again %.2f s after the kill; "
         "%llu samples acknowledged so far\n",
         cycle, options.cycles, victim, in_flight, drivers.size(), *serving, writing_again,
@@ -164,6 +181,12 @@ LedgerCheck CheckSessions(const Drivers& drivers, int& failures) {
   for (const auto& driver : drivers) {
     v1::ExportSessionResponse exported;
     const grpc::Status status = driver->client().ExportSession(driver->session(), &exported);
+    if (status.error_code() == grpc::StatusCode::NOT_FOUND) {  // the session is gone
+      std::printf("session %s: not found: every sample it was acknowledged is lost\n",
+                  driver->session().id.c_str());
+      total += driver->ledger().Check({});
+      continue;
+    }
     if (!status.ok()) {
       std::printf("session %s: ExportSession failed: %s\n", driver->session().id.c_str(),
                   status.error_message().c_str());
@@ -286,8 +309,10 @@ int Run(const ChaosOptions& options) {
       failures == 0 && check.lost == 0 && check.duplicated == 0 && check.unexpected == 0;
   drivers.clear();
   started->reset();
-  if (clean && options.directory.empty()) std::filesystem::remove_all(directory);
-  if (!clean) std::printf("files kept in %s\n", directory.c_str());
+  // A run without a store is expected to fail; its files say nothing new.
+  const bool keep = !clean && options.store != StoreKind::kMemory;
+  if (!keep && options.directory.empty()) std::filesystem::remove_all(directory);
+  if (keep) std::printf("files kept in %s\n", directory.c_str());
   return clean ? 0 : 1;
 }
 

@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -62,8 +63,8 @@ Status WaitUntilServing(const std::string& address) {
 StatusOr<std::unique_ptr<ServerFleet>> ServerFleet::Start(StoreKind kind,
                                                           const std::string& server_binary,
                                                           const std::string& directory) {
-  std::unique_ptr<ServerFleet> fleet(new ServerFleet(server_binary, directory));
-  if (kind != StoreKind::kSqlite) {
+  std::unique_ptr<ServerFleet> fleet(new ServerFleet(kind, server_binary, directory));
+  if (kind == StoreKind::kPostgres || kind == StoreKind::kCluster) {
     const testing::PostgresInstanceOptions postgres_options;
     if (::access((postgres_options.bin_directory + "/initdb").c_str(), X_OK) != 0) {
       return FailedPreconditionError("no PostgreSQL server programs in " +
@@ -103,8 +104,38 @@ std::string ServerFleet::address() const {
 }
 
 std::vector<std::string> ServerFleet::StoreArguments() const {
-  if (postgres_ == nullptr) return {"--data-dir", directory_ + "/data"};
-  return {"--store", postgres_->Uri(kDatabase), "--lease-seconds", kLeaseSeconds};
+  switch (kind_) {
+    case StoreKind::kSqlite:
+      return {"--data-dir", directory_ + "/data"};
+    case StoreKind::kPostgres:
+    case StoreKind::kCluster:
+      return {"--store", postgres_->Uri(kDatabase), "--lease-seconds", kLeaseSeconds};
+    case StoreKind::kMemory:
+      return {};
+  }
+  return {};
+}
+
+// A log line starts with its time, "[2026-12-03 08:16:18.448]", so that the later of
+// two lines is the greater string.
+int ServerFleet::LastServing(const std::string& session_id) const {
+  const std::string mention = "session=" + session_id;
+  int serving = -1;
+  std::string latest;
+  for (int i = 0; i < servers(); ++i) {
+    const Server& server = servers_[static_cast<std::size_t>(i)];
+    if (server.process == nullptr) continue;
+    std::ifstream log(server.process->log_path());
+    std::string last;
+    for (std::string line; std::getline(log, line);) {
+      if (line.find(mention) != std::string::npos) last = line.substr(0, line.find(']') + 1);
+    }
+    if (!last.empty() && last > latest) {
+      latest = last;
+      serving = i;
+    }
+  }
+  return serving;
 }
 
 void ServerFleet::Kill(int i) {

@@ -31,6 +31,9 @@ class ServerFleet {
   std::string address() const;
   int servers() const { return static_cast<int>(servers_.size()); }
 
+  // The server whose log last mentions a call on `session_id` (which serves it, as
+  // far as its log tells), or -1 when none does.
+  int LastServing(const std::string& session_id) const;
   // kill -9 of server `i`; it is dead and reaped when this returns.
   void Kill(int i);
   // Starts server `i` on its port and the store; the seconds from its start to its
@@ -44,11 +47,12 @@ class ServerFleet {
     std::unique_ptr<client::LocalServer> process;
   };
 
-  ServerFleet(std::string server_binary, std::string directory)
-      : server_binary_(std::move(server_binary)), directory_(std::move(directory)) {}
+  ServerFleet(StoreKind kind, std::string server_binary, std::string directory)
+      : kind_(kind), server_binary_(std::move(server_binary)), directory_(std::move(directory)) {}
   // The flags that put a server on the store.
   std::vector<std::string> StoreArguments() const;
 
+  StoreKind kind_;
   std::string server_binary_;
   std::string directory_;
   std::unique_ptr<testing::PostgresInstance> postgres_;
