@@ -1,13 +1,11 @@
 // Starting, killing and restarting the servers of a chaos run.
 #include "chaos/server_fleet.h"
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
