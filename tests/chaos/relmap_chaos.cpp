@@ -226,8 +226,10 @@ int Run(const ChaosOptions& options) {
                 started.status().message().c_str());
     if (started.status().code() == StatusCode::kFailedPrecondition) {
       std::printf("skipped: the %s store cannot run here\n", StoreName(options.store));
+      if (options.directory.empty()) std::filesystem::remove_all(directory);
       return kExitSkipped;
     }
+    std::printf("files kept in %s\n", directory.c_str());
     return 2;
   }
   ServerFleet& fleet = **started;
