@@ -2,9 +2,9 @@
 #include "load_options.h"
 
 #include <cerrno>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string_view>
 
 #include "common/command_line.h"
@@ -48,13 +48,12 @@ constexpr std::string_view kUsage =
 // A whole number in [minimum, maximum] or Usage.
 std::int64_t Whole(std::string_view flag, const char* text, std::int64_t minimum,
                    std::int64_t maximum) {
-  const double value = tools::ParseNumberOrExit(kProgram, flag, text);
-  if (value != std::floor(value) || value < static_cast<double>(minimum) ||
-      value > static_cast<double>(maximum)) {
+  const std::optional<long long> value = tools::ParseWholeNumber(text, minimum, maximum);
+  if (!value) {
     Usage(std::string(flag) + " expects a whole number from " + std::to_string(minimum) + " to " +
           std::to_string(maximum) + ", got '" + text + "'");
   }
-  return static_cast<std::int64_t>(value);
+  return *value;
 }
 
 // Any 64-bit unsigned number (a double would round seeds above 2^53).
