@@ -36,8 +36,9 @@ struct Predictor {
 
   std::pair<float, float> XY(std::size_t index, float z) const {
     if (!intrinsics) return {previous_x, previous_y};
-    const auto u = static_cast<float>(index % width);
-    const auto v = static_cast<float>(index / width);
+    const std::size_t column = index % width, row = index / width;
+    const auto u = static_cast<float>(column);
+    const auto v = static_cast<float>(row);
     const auto fx = static_cast<float>(intrinsics->fx), cx = static_cast<float>(intrinsics->cx);
     const auto fy = static_cast<float>(intrinsics->fy), cy = static_cast<float>(intrinsics->cy);
     return {(u - cx) / fx * z, (v - cy) / fy * z};

@@ -30,13 +30,11 @@ void ExpectSameCloud(const Cloud& original, const Cloud& expanded, bool colour) 
   for (std::size_t i = 0; i < original.size(); ++i) {
     const CloudPoint a = original.point(i), b = expanded.point(i);
     const bool finite = std::isfinite(a.z);
-    if (finite != std::isfinite(b.z)) {
-      ++differing;
-    } else if (finite &&
-               (Bits(a.x) != Bits(b.x) || Bits(a.y) != Bits(b.y) || Bits(a.z) != Bits(b.z) ||
-                (colour && (a.r != b.r || a.g != b.g || a.b != b.b)))) {
-      ++differing;
-    }
+    const bool same_hole = finite == std::isfinite(b.z);
+    const bool same_point = Bits(a.x) == Bits(b.x) && Bits(a.y) == Bits(b.y) &&
+                            Bits(a.z) == Bits(b.z) &&
+                            (!colour || (a.r == b.r && a.g == b.g && a.b == b.b));
+    if (!same_hole || (finite && !same_point)) ++differing;
   }
   EXPECT_EQ(differing, 0u);
 }

@@ -4,6 +4,7 @@
 // Figures: throughput, client-observed latency percentiles, and the server's
 // resident-memory growth per session. See --help.
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -205,5 +206,11 @@ int Run(const LoadOptions& options) {
 }  // namespace relmap::load
 
 int main(int argc, char** argv) {
-  return relmap::load::Run(relmap::load::ParseLoadOptions(argc, argv, RELMAP_SERVER_BINARY));
+  // The soak's sampler thread may fail to start (std::system_error).
+  try {
+    return relmap::load::Run(relmap::load::ParseLoadOptions(argc, argv, RELMAP_SERVER_BINARY));
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "relmap-load: %s\n", error.what());
+    return 2;
+  }
 }
