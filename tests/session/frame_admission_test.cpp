@@ -68,7 +68,7 @@ TEST(FrameAdmission, ServesTheWaitingSessionsInTurnHoweverManyCallsOneSends) {
       const std::string session(call, 1);
       auto ticket = admission.Enter(system_clock::now() + milliseconds(10000), session);
       const std::lock_guard lock(mutex);
-      order.push_back(ticket ? call : "refused");
+      order.emplace_back(ticket ? call : "refused");
     });  // the ticket goes when the call has recorded itself: the next is admitted
     while (admission.waiting() == before) std::this_thread::yield();
   }
