@@ -14,6 +14,7 @@ packages=(
   libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libssl-dev zlib1g-dev openssl
+  libzstd-dev           # the compact frame cache (server/perception/word_planes.cpp)
   python3-grpcio python3-protobuf  # scripts/grpcurl-lite
   libpq-dev postgresql  # the shared session store and its tests
   nginx python3-yaml    # the cluster test's load balancer; deploy/ YAML checks
