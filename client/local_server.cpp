@@ -17,6 +17,8 @@
 #include <thread>
 #include <utility>
 
+#include "common/exec_argv.h"
+
 namespace relmap::client {
 namespace {
 
@@ -51,10 +53,7 @@ StatusOr<std::unique_ptr<LocalServer>> LocalServer::Start(const std::string& bin
                                         port_file};
   if (!options.memory_only) arguments.insert(arguments.end(), {"--data-dir", *directory + "/data"});
   arguments.insert(arguments.end(), options.extra_arguments.begin(), options.extra_arguments.end());
-  std::vector<char*> argv;
-  argv.reserve(arguments.size() + 1);
-  for (std::string& argument : arguments) argv.push_back(argument.data());
-  argv.push_back(nullptr);
+  const std::vector<char*> argv = ExecArgv(arguments);
 
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);

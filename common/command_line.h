@@ -2,9 +2,11 @@
 // and a one-line message, and flag values are parsed strictly.
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -29,6 +31,19 @@ inline double ParseNumberOrExit(std::string_view program, std::string_view flag,
     ExitWithError(program, std::string(flag) + " expects a number, got '" + text + "'");
   }
   return value;
+}
+
+// `text` as a whole number in [minimum, maximum]; nullopt when it is not a number, has a
+// fraction or lies outside (the caller says so with its flag's usage).
+inline std::optional<long long> ParseWholeNumber(const char* text, long long minimum,
+                                                 long long maximum) {
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != '\0' || value != std::floor(value) ||
+      value < static_cast<double>(minimum) || value > static_cast<double>(maximum)) {
+    return std::nullopt;
+  }
+  return static_cast<long long>(value);
 }
 
 // `body()`'s exit code, or 1 with "<program>: <what>" on standard error when it throws:

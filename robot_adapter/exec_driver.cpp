@@ -11,23 +11,23 @@
 #include <cstring>
 #include <thread>
 
+#include "common/exec_argv.h"
 #include "posix_io.h"
 
 namespace relmap::robot {
 namespace {
 
 // The child's side: its own process group, the pipes as stdin and stdout, exec.
-[[noreturn]] void ExecChild(const std::vector<std::string>& command, int stdin_fd, int stdout_fd) {
+// It writes its error in pieces: it must not allocate (see common/exec_argv.h).
+[[noreturn]] void ExecChild(char* const* argv, int stdin_fd, int stdout_fd) {
   ::setpgid(0, 0);
   ::dup2(stdin_fd, STDIN_FILENO);
   ::dup2(stdout_fd, STDOUT_FILENO);
-  std::vector<char*> argv;
-  argv.reserve(command.size() + 1);
-  for (const std::string& arg : command) argv.push_back(const_cast<char*>(arg.c_str()));
-  argv.push_back(nullptr);
-  ::execvp(argv[0], argv.data());
-  const std::string error = "relmap-robot: cannot run " + command[0] + ": " + std::strerror(errno);
-  (void)!::write(STDERR_FILENO, error.data(), error.size());
+  ::execvp(argv[0], argv);
+  const char* reason = std::strerror(errno);
+  for (const char* piece :
+       {"relmap-robot: cannot run ", static_cast<const char*>(argv[0]), ": ", reason, "\n"})
+    (void)!::write(STDERR_FILENO, piece, std::strlen(piece));
   ::_exit(127);
 }
 
@@ -51,8 +51,9 @@ StatusOr<PushOutcome> ExecDriver::Push(const DriverRequest& target) {
     ::close(to_child[1]);
     return InternalError("pipe: " + std::string(strerror(errno)));
   }
+  const std::vector<char*> argv = ExecArgv(command_);
   const pid_t pid = ::fork();
-  if (pid == 0) ExecChild(command_, to_child[0], from_child[1]);
+  if (pid == 0) ExecChild(argv.data(), to_child[0], from_child[1]);
   ::close(to_child[0]);
   ::close(from_child[1]);
   if (pid < 0) {

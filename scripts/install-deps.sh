@@ -14,10 +14,15 @@ packages=(
   libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libssl-dev zlib1g-dev openssl
+  libzstd-dev           # the compact frame cache (server/perception/word_planes.cpp)
   python3-grpcio python3-protobuf  # scripts/grpcurl-lite
   libpq-dev postgresql  # the shared session store and its tests
   nginx python3-yaml    # the cluster test's load balancer; deploy/ YAML checks
   file                  # cpack -G DEB (dpkg-shlibdeps)
+  # ROS 1 (Debian's own packages) for robot_adapter/ros: relmap_ros_bridge and its tests.
+  # pluginlib-dev: rosbag's headers include it, and librosbag-dev does not depend on it.
+  ros-core-dev librosbag-dev pluginlib-dev libsensor-msgs-dev libgeometry-msgs-dev
+  libvisualization-msgs-dev libdiagnostic-msgs-dev libtf2-ros-dev
   "$@"
 )
 

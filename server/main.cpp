@@ -3,7 +3,9 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <fstream>
+#include <thread>
 
 #include "drain_on_signal.h"
 #include "grpc_serving.h"
@@ -12,11 +14,23 @@
 #include "server_options.h"
 #include "service/relevance_service.h"
 #include "service_setup.h"
+#include "session/memory_release.h"
 #include "stop_signals.h"
+
+namespace {
+
+// Blocks of 256 KiB and more (a decoded cloud, its labels, a cached frame's packed points)
+// are mapped on their own and unmapped when freed; one arena per core: the frames that
+// allocate most run at most --max-concurrent-frames at once (2 by default).
+constexpr std::size_t kMmapThresholdBytes = 256 << 10;
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace relmap::server;
   const ServerOptions options = ParseServerOptions(argc, argv);
+  relmap::session::ConfigureAllocator(
+      std::max(2, static_cast<int>(std::thread::hardware_concurrency())), kMmapThresholdBytes);
   // Logs are diagnostics: standard error, one line per event.
   spdlog::set_default_logger(spdlog::stderr_color_mt("relmap-server"));
   StopSignals stop_signals = StopSignals::Block();  // before gRPC starts its threads

@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 
+#include "cmm/log_math.h"
 #include "cmm/whitened_distance.h"
 
 namespace relmap::cmm {
@@ -22,8 +23,6 @@ constexpr int kHitMaxSize = 4;
 // Samples per block of a scatter computed from scratch: a p×64 block (24 KB at
 // p = 48) stays on the stack of Eigen's product and in the cache.
 constexpr std::size_t kScatterChunk = 64;
-
-const double kLogTwoPi = std::log(2.0 * std::numbers::pi);
 
 }  // namespace
 

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 #include <vector>
 
+#include "cmm/log_math.h"
 #include "cmm/whitened_distance.h"
 
 namespace relmap::cmm {
@@ -18,8 +18,6 @@ namespace {
 // B's covariance is the total covariance times this: a standard deviation twice
 // that of all the data.
 constexpr double kBackgroundInflation = 4.0;
-
-const double kLogTwoPi = std::log(2.0 * std::numbers::pi);
 
 // The local scatter is estimated from at most this many samples (the first
 // ones): it is a scale, and its cost grows with the square of the count.

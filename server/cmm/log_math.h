@@ -6,10 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace relmap::cmm {
 
 inline constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
+
+// log 2π, in every Gaussian's log-normaliser −½·p·log 2π − ½·log det Σ.
+inline const double kLogTwoPi = std::log(2.0 * std::numbers::pi);
 
 // log(e^a + e^b); −∞ if both are −∞.
 inline double LogAddExp(double a, double b) {

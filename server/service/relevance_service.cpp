@@ -23,8 +23,10 @@ std::int64_t NowUnixMs() {
 }  // namespace
 
 StatusOr<session::AdmittedCloud> RelevanceService::TakeCloud(grpc::ServerContext& context,
-                                                             const v1::Cloud& cloud) {
-  session::FrameIntake::Taken taken = intake_.Take(EncodedCloudOf(cloud), context.deadline());
+                                                             const v1::Cloud& cloud,
+                                                             const std::string& session_id) {
+  session::FrameIntake::Taken taken =
+      intake_.Take(EncodedCloudOf(cloud), context.deadline(), session_id);
   // gRPC's server pushback trailer (retry design A6): the call did nothing, repeat it
   // after this long. relmap's client reads it; gRPC's own retry policy would too.
   if (taken.busy) {
@@ -131,7 +133,7 @@ grpc::Status RelevanceService::ComputeMaps(grpc::ServerContext* context,
     const auto start = std::chrono::steady_clock::now();
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
-    auto cloud = TakeCloud(*context, request->cloud());
+    auto cloud = TakeCloud(*context, request->cloud(), request->session_id());
     if (!cloud.ok()) return ToGrpcStatus(cloud.status());
     const auto milliseconds = [](auto from, auto to) {
       return std::chrono::duration<double, std::milli>(to - from).count();
@@ -160,7 +162,7 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
     StatusOr<session::Outcome> outcome = InvalidArgumentError(
         "the outcome needs a label (LABEL_MOVEABLE or LABEL_NOT_MOVEABLE) or an after_cloud");
     if (request->has_after_cloud()) {
-      auto after = TakeCloud(*context, request->after_cloud());
+      auto after = TakeCloud(*context, request->after_cloud(), request->session_id());
       if (!after.ok()) return ToGrpcStatus(after.status());
       outcome = (*session)->PostOutcomeFromCloud(request->frame_id(), request->supervoxel_id(),
                                                  after->cloud, request->request_id(), NowUnixMs());

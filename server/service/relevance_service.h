@@ -80,7 +80,8 @@ class RelevanceService final : public v1::RelevanceService::Service {
   // most until the call's deadline. A busy server's RESOURCE_EXHAUSTED gets a
   // grpc-retry-pushback-ms trailer, the signal that the call did nothing and may
   // be repeated.
-  StatusOr<session::AdmittedCloud> TakeCloud(grpc::ServerContext& context, const v1::Cloud& cloud);
+  StatusOr<session::AdmittedCloud> TakeCloud(grpc::ServerContext& context, const v1::Cloud& cloud,
+                                             const std::string& session_id);
 
   session::SessionRegistry& registry_;
   const Authorization authorization_;

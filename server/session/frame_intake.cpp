@@ -9,9 +9,10 @@
 namespace relmap::session {
 
 FrameIntake::Taken FrameIntake::Take(const EncodedCloud& encoded,
-                                     std::chrono::system_clock::time_point deadline) {
+                                     std::chrono::system_clock::time_point deadline,
+                                     std::string_view session) {
   std::optional<FrameAdmission::Ticket> slot =
-      admission_.Enter(std::min(deadline, std::chrono::system_clock::now() + max_wait_));
+      admission_.Enter(std::min(deadline, std::chrono::system_clock::now() + max_wait_), session);
   if (!slot) {
     // The reason BUSY says to clients what the service's pushback trailer says to gRPC.
     return {

@@ -57,9 +57,11 @@ class FrameIntake {
     bool busy = false;
   };
 
-  // A slot, waiting at most until `deadline` or the limits' max_wait, then the
-  // decoded cloud; a cloud that does not decode keeps its decoder's status.
-  Taken Take(const EncodedCloud& encoded, std::chrono::system_clock::time_point deadline);
+  // A slot, waiting at most until `deadline` or the limits' max_wait in the turn of
+  // `session` (frame_admission.h), then the decoded cloud; a cloud that does not
+  // decode keeps its decoder's status.
+  Taken Take(const EncodedCloud& encoded, std::chrono::system_clock::time_point deadline,
+             std::string_view session = {});
 
  private:
   StatusOr<perception::Cloud> Decode(const EncodedCloud& encoded) const;

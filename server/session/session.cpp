@@ -58,6 +58,10 @@ StatusOr<MappedFrame> Session::ComputeMaps(perception::Cloud cloud, std::int64_t
   if (shared->size() == 0) {
     return InvalidArgumentError("the cloud gave no supervoxel (too few points in the workspace)");
   }
+  // Packing takes a few milliseconds: before the lock too.
+  auto cached = std::make_shared<CachedFrame>(
+      CachedFrame{0, shared->features.values,
+                  perception::ChangeBefore::Of(*shared, settings_.perception.change)});
 
   std::lock_guard lock(mutex_);
   const auto start = std::chrono::steady_clock::now();
@@ -78,25 +82,31 @@ StatusOr<MappedFrame> Session::ComputeMaps(perception::Cloud cloud, std::int64_t
   if (drew) ++interactions_;
   ++frames_;
   last_used_unix_ms_ = now_unix_ms;
-  frames_cache_.push_back(mapped);
+  cached->frame_id = mapped.frame_id;
+  frames_cache_.push_back(std::move(cached));
   if (frames_cache_.size() > policy_.frame_cache) frames_cache_.pop_front();
   return mapped;
 }
 
-StatusOr<std::shared_ptr<const perception::Frame>> Session::FrameForOutcomeLocked(
+std::size_t CachedFrame::bytes() const {
+  return sizeof(CachedFrame) + static_cast<std::size_t>(features.size()) * sizeof(double) +
+         change_before.bytes();
+}
+
+StatusOr<std::shared_ptr<const CachedFrame>> Session::FrameForOutcomeLocked(
     std::uint64_t frame_id, std::uint32_t supervoxel_id) const {
-  const MappedFrame* mapped = nullptr;
-  for (const MappedFrame& f : frames_cache_) {
-    if (f.frame_id == frame_id) mapped = &f;
+  std::shared_ptr<const CachedFrame> cached;
+  for (const auto& f : frames_cache_) {
+    if (f->frame_id == frame_id) cached = f;
   }
-  if (mapped == nullptr) {
+  if (cached == nullptr) {
     return FailedPreconditionError("frame " + std::to_string(frame_id) + " of session " + id_ +
                                    " is unknown or no longer cached (the cache keeps the last " +
                                    std::to_string(policy_.frame_cache) + " frames)")
         .WithReason(ErrorReason::kFrameGone,
                     {{"sessionId", id_}, {"frameId", std::to_string(frame_id)}});
   }
-  const auto& features = mapped->frame->features.values;
+  const Eigen::MatrixXd& features = cached->features;
   if (supervoxel_id >= features.rows()) {
     return InvalidArgumentError("frame " + std::to_string(frame_id) + " has " +
                                 std::to_string(features.rows()) + " supervoxels, no id " +
@@ -107,17 +117,16 @@ StatusOr<std::shared_ptr<const perception::Frame>> Session::FrameForOutcomeLocke
                                 std::to_string(frame_id) +
                                 " has non-finite features and cannot be learned");
   }
-  return mapped->frame;
+  return cached;
 }
 
-StatusOr<Outcome> Session::LearnOutcomeLocked(const perception::Frame& frame,
-                                              std::uint32_t supervoxel_id, int label,
-                                              const std::string& request_id,
+StatusOr<Outcome> Session::LearnOutcomeLocked(const CachedFrame& frame, std::uint32_t supervoxel_id,
+                                              int label, const std::string& request_id,
                                               std::optional<perception::ChangeEvidence> evidence,
                                               std::int64_t now_unix_ms) {
   const std::string key = request_id.empty() ? "auto-" + RandomHex(12) : request_id;
   const auto row = static_cast<Eigen::Index>(supervoxel_id);
-  if (Status status = PersistAndLearn(key, frame.features.values.row(row).transpose(), label);
+  if (Status status = PersistAndLearn(key, frame.features.row(row).transpose(), label);
       !status.ok()) {
     return status;
   }
@@ -142,7 +151,7 @@ StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uin
                                                 const perception::Cloud& after,
                                                 const std::string& request_id,
                                                 std::int64_t now_unix_ms) {
-  std::shared_ptr<const perception::Frame> frame;
+  std::shared_ptr<const CachedFrame> frame;
   {
     std::lock_guard lock(mutex_);
     if (const Outcome* answered = AnsweredLocked(request_id)) return *answered;
@@ -150,11 +159,12 @@ StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uin
     if (!found.ok()) return found.status();
     frame = std::move(found).value();
   }
-  // The detector (tens of milliseconds) runs without the lock; the frame is
-  // shared, so an eviction meanwhile does not pull it away.
+  // Unpacking and the detector (tens of milliseconds) run without the lock; the frame
+  // is shared, so an eviction meanwhile does not pull it away.
+  auto before = frame->change_before.Expand(supervoxel_id);
+  if (!before.ok()) return before.status();
   auto evidence =
-      perception::DetectChange(frame->cloud, after, frame->segmentation.supervoxels[supervoxel_id],
-                               settings_.perception.change);
+      perception::DetectChange(before->before, after, before->target, settings_.perception.change);
   if (!evidence.ok()) return evidence.status();
   const int label = evidence->moved ? 1 : 0;
 

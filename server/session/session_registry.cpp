@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "session/credentials.h"
+#include "session/memory_release.h"
 
 namespace relmap::session {
 
@@ -167,6 +168,7 @@ std::vector<std::string> SessionRegistry::EvictIdle(std::int64_t cutoff_unix_ms)
     }
   }
   lock.unlock();
+  if (!evicted.empty()) ReturnFreedMemory();
   // Another server may take an evicted session at once rather than after its hold expires.
   for (const std::string& id : evicted) store_->ReleaseOwnership(id);
   return evicted;
@@ -205,6 +207,7 @@ std::vector<std::string> SessionRegistry::ExpireIdle(std::int64_t cutoff_unix_ms
       ++it;
     }
   }
+  if (!expired.empty()) ReturnFreedMemory();
   if (!stored_ids) return expired;
   // Forget the ids the store no longer has (deleted by a call or by another server).
   std::erase_if(stored_last_used_,
@@ -239,8 +242,16 @@ Status SessionRegistry::Delete(const std::string& id) {
   } else if (sessions_.find(id) == sessions_.end()) {
     return NotFoundError("no session '" + id + "'");
   }
-  sessions_.erase(id);
+  // Freed outside the lock, unless a call still holds the session (it goes with that call).
+  std::shared_ptr<Session> deleted;
+  if (const auto it = sessions_.find(id); it != sessions_.end()) {
+    deleted = std::move(it->second);
+    sessions_.erase(it);
+  }
   stored_last_used_.erase(id);
+  lock.unlock();
+  deleted.reset();
+  ReturnFreedMemory();
   return OkStatus();
 }
 

@@ -17,6 +17,8 @@
 #include <sstream>
 #include <thread>
 
+#include "common/exec_argv.h"
+
 namespace relmap::testing {
 namespace {
 
@@ -35,6 +37,7 @@ bool Accepts(int port) {
 // returns the child's pid, or -1.
 pid_t Spawn(std::vector<std::string> arguments, const std::string& output,
             const std::string& errors) {
+  const std::vector<char*> argv = ExecArgv(arguments);
   const pid_t pid = ::fork();
   if (pid != 0) return pid;
   const int out = ::open(output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -42,9 +45,6 @@ pid_t Spawn(std::vector<std::string> arguments, const std::string& output,
   if (out < 0 || err < 0) ::_exit(126);
   ::dup2(out, STDOUT_FILENO);
   ::dup2(err, STDERR_FILENO);
-  std::vector<char*> argv;
-  for (std::string& argument : arguments) argv.push_back(argument.data());
-  argv.push_back(nullptr);
   ::execvp(argv[0], argv.data());
   ::_exit(127);
 }

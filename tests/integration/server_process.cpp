@@ -13,6 +13,8 @@
 #include <fstream>
 #include <thread>
 
+#include "common/exec_argv.h"
+
 namespace relmap::testing {
 
 ServerProcess::ServerProcess(std::vector<std::string> extra_arguments) {
@@ -22,11 +24,9 @@ ServerProcess::ServerProcess(std::vector<std::string> extra_arguments) {
   std::vector<std::string> arguments = {RELMAP_SERVER_BINARY, "--listen", "127.0.0.1:0",
                                         "--port-file", port_file_};
   arguments.insert(arguments.end(), extra_arguments.begin(), extra_arguments.end());
+  const std::vector<char*> argv = ExecArgv(arguments);
   pid_ = ::fork();
   if (pid_ == 0) {
-    std::vector<char*> argv;
-    for (auto& a : arguments) argv.push_back(a.data());
-    argv.push_back(nullptr);
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }

@@ -6,7 +6,10 @@
 
 #include <atomic>
 #include <chrono>
+#include <mutex>
+#include <string>
 #include <thread>
+#include <vector>
 
 namespace relmap::session {
 namespace {
@@ -49,6 +52,52 @@ TEST(FrameAdmission, TheQueueIsBoundedAndAWaiterGivesUpAtItsDeadline) {
   waiter.join();
   EXPECT_FALSE(admitted);  // the slot stayed taken past the waiter's deadline
   EXPECT_EQ(admission.waiting(), 0u);
+}
+
+TEST(FrameAdmission, ServesTheWaitingSessionsInTurnHoweverManyCallsOneSends) {
+  FrameAdmission admission(1, 10);
+  std::optional<FrameAdmission::Ticket> running =
+      admission.Enter(system_clock::now() + milliseconds(1000), "x");
+  std::mutex mutex;
+  std::vector<std::string> order;
+  std::vector<std::thread> waiters;
+  // Session a queues three calls, then b one: b's call goes second, not last.
+  for (const char* call : {"a1", "a2", "a3", "b1"}) {
+    const std::size_t before = admission.waiting();
+    waiters.emplace_back([&, call] {
+      const std::string session(call, 1);
+      auto ticket = admission.Enter(system_clock::now() + milliseconds(10000), session);
+      const std::lock_guard lock(mutex);
+      order.emplace_back(ticket ? call : "refused");
+    });  // the ticket goes when the call has recorded itself: the next is admitted
+    while (admission.waiting() == before) std::this_thread::yield();
+  }
+  running.reset();
+  for (std::thread& waiter : waiters) waiter.join();
+  EXPECT_EQ(order, (std::vector<std::string>{"a1", "b1", "a2", "a3"}));
+  EXPECT_EQ(admission.running(), 0u);
+  EXPECT_EQ(admission.waiting(), 0u);
+}
+
+TEST(FrameAdmission, AFreedSlotGoesToAWaiterNotToACallArrivingMeanwhile) {
+  FrameAdmission admission(1, 1);
+  std::optional<FrameAdmission::Ticket> running =
+      admission.Enter(system_clock::now() + milliseconds(1000), "a");
+  std::atomic<bool> waited = false;
+  std::atomic<bool> release = false;
+  std::thread waiter([&] {
+    const auto ticket = admission.Enter(system_clock::now() + milliseconds(10000), "b");
+    waited = ticket.has_value();
+    while (!release) std::this_thread::yield();  // b holds its slot until told
+  });
+  while (admission.waiting() == 0) std::this_thread::yield();
+  running.reset();  // handed to b at once: the slot is never free
+  EXPECT_EQ(admission.running(), 1u);
+  EXPECT_FALSE(admission.Enter(system_clock::now(), "c").has_value());
+  release = true;
+  waiter.join();
+  EXPECT_TRUE(waited);
+  EXPECT_EQ(admission.running(), 0u);
 }
 
 }  // namespace

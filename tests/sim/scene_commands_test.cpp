@@ -8,15 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "common/exec_argv.h"
 #include "sim_commands.h"
 
 namespace relmap::sim {
 namespace {
 
 int RunCommand(int (*command)(int, char**), std::vector<std::string> words) {
-  std::vector<char*> argv;
-  for (std::string& w : words) argv.push_back(w.data());
-  return command(static_cast<int>(argv.size()), argv.data());
+  std::vector<char*> argv = ExecArgv(words);
+  return command(static_cast<int>(words.size()), argv.data());
 }
 
 std::string TempPng(const char* name) {

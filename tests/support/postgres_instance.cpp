@@ -16,6 +16,8 @@
 #include <sstream>
 #include <vector>
 
+#include "common/exec_argv.h"
+
 namespace relmap::testing {
 namespace {
 
@@ -42,9 +44,7 @@ int FreeLoopbackPort() {
 // `log`, and waits; its exit status.
 int Run(std::vector<std::string> argv, const std::string& log) {
   if (geteuid() == 0) argv.insert(argv.begin(), {"runuser", "-u", "postgres", "--"});
-  std::vector<char*> args;
-  for (std::string& arg : argv) args.push_back(arg.data());
-  args.push_back(nullptr);
+  const std::vector<char*> args = ExecArgv(argv);
   const pid_t child = fork();
   if (child < 0) return -1;
   if (child == 0) {

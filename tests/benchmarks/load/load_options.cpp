@@ -2,9 +2,9 @@
 #include "load_options.h"
 
 #include <cerrno>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string_view>
 
 #include "common/command_line.h"
@@ -20,6 +20,8 @@ constexpr std::string_view kUsage =
     "                   [--server-binary PATH] [--max-threads N] [--memory-only]\n"
     "                   [--server HOST:PORT [--server-pid PID] [--admin-key-file F]]\n"
     "                   [--deadline-seconds 120] [--max-attempts N] [--json]\n"
+    "                   [--soak-rounds R [--rest-seconds 20] [--csv F] [--png F]\n"
+    "                    [--max-rested-growth-mib M]]\n"
     "  Runs S concurrent sessions against one relmap-server, each looping ComputeMaps ->\n"
     "  PostOutcome on the returned target, and reports throughput, client-observed\n"
     "  latencies and the server's resident memory per session.\n"
@@ -38,6 +40,11 @@ constexpr std::string_view kUsage =
     "  --deadline-seconds  of one call, its retries after RESOURCE_EXHAUSTED included\n"
     "  --max-attempts    of one call, the first included (default: what the deadline allows)\n"
     "  --json            print one JSON object instead of the text report\n"
+    "  --soak-rounds     a soak instead: R rounds of S sessions under load for --seconds\n"
+    "                    (or --cycles), each ended by deleting them and --rest-seconds of\n"
+    "                    rest, with the server's RSS sampled every second; --csv and --png\n"
+    "                    write the samples and their plot; --max-rested-growth-mib fails the\n"
+    "                    run (exit 1) when RSS after the last rest exceeds the baseline by more\n"
     "  Progress goes to standard error, one line per second. Exit status: 0 when every\n"
     "  session completed, 1 when one failed, 2 for bad flags or a failed set-up.\n";
 
@@ -48,13 +55,12 @@ constexpr std::string_view kUsage =
 // A whole number in [minimum, maximum] or Usage.
 std::int64_t Whole(std::string_view flag, const char* text, std::int64_t minimum,
                    std::int64_t maximum) {
-  const double value = tools::ParseNumberOrExit(kProgram, flag, text);
-  if (value != std::floor(value) || value < static_cast<double>(minimum) ||
-      value > static_cast<double>(maximum)) {
+  const std::optional<long long> value = tools::ParseWholeNumber(text, minimum, maximum);
+  if (!value) {
     Usage(std::string(flag) + " expects a whole number from " + std::to_string(minimum) + " to " +
           std::to_string(maximum) + ", got '" + text + "'");
   }
-  return static_cast<std::int64_t>(value);
+  return *value;
 }
 
 // Any 64-bit unsigned number (a double would round seeds above 2^53).
@@ -127,6 +133,18 @@ LoadOptions ParseLoadOptions(int argc, char** argv, const std::string& default_s
       options.admin_key_file = value;
     } else if (flag == "--max-attempts") {
       options.max_attempts = static_cast<int>(Whole(flag, value, 1, 1000000));
+    } else if (flag == "--soak-rounds") {
+      options.soak_rounds = static_cast<int>(Whole(flag, value, 1, 100000));
+    } else if (flag == "--rest-seconds") {
+      options.rest_seconds = tools::ParseNumberOrExit(kProgram, flag, value);
+      if (!(options.rest_seconds >= 0)) Usage("--rest-seconds must be 0 or more");
+    } else if (flag == "--csv") {
+      options.csv_path = value;
+    } else if (flag == "--png") {
+      options.png_path = value;
+    } else if (flag == "--max-rested-growth-mib") {
+      options.max_rested_growth_mib = tools::ParseNumberOrExit(kProgram, flag, value);
+      if (!(options.max_rested_growth_mib >= 0)) Usage("--max-rested-growth-mib must be 0 or more");
     } else if (flag == "--deadline-seconds") {
       options.deadline_seconds = tools::ParseNumberOrExit(kProgram, flag, value);
       if (!(options.deadline_seconds > 0)) Usage("--deadline-seconds must be positive");
@@ -137,6 +155,10 @@ LoadOptions ParseLoadOptions(int argc, char** argv, const std::string& default_s
   if (options.seconds > 0 && !cycles_given) options.cycles = 0;
   if (synthetic_given && !options.cloud_path.empty())
     Usage("--synthetic and --cloud exclude each other");
+  if (options.soak_rounds == 0 && (!options.csv_path.empty() || !options.png_path.empty() ||
+                                   options.max_rested_growth_mib >= 0)) {
+    Usage("--csv, --png and --max-rested-growth-mib go with --soak-rounds");
+  }
   if (options.server_address.empty() && options.server_pid != 0) {
     Usage("--server-pid goes with --server");
   }

@@ -29,6 +29,14 @@ struct LoadOptions {
   int max_attempts = 0;  // 0: as many as the deadline allows
   double deadline_seconds = 120;
   bool json = false;
+  // The soak (soak.h), when soak_rounds > 0: rounds of `sessions` sessions for `seconds`
+  // (or `cycles`) each, their deletion, then rest_seconds of rest.
+  int soak_rounds = 0;
+  double rest_seconds = 20;
+  std::string csv_path;  // the memory samples
+  std::string png_path;  // their plot
+  // Fail (exit 1) when memory after the last rest exceeds the baseline by more; < 0: no check.
+  double max_rested_growth_mib = -1;
 };
 
 // The options of `argv`; prints the usage and exits on --help (0) or bad input (2).

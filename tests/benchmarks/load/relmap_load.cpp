@@ -4,6 +4,7 @@
 // Figures: throughput, client-observed latency percentiles, and the server's
 // resident-memory growth per session. See --help.
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -15,9 +16,11 @@
 #include "load_driver.h"
 #include "load_options.h"
 #include "load_report.h"
+#include "load_sessions.h"
 #include "local_server.h"
 #include "process_memory.h"
 #include "relevance_client.h"
+#include "soak.h"
 #include "synthetic_cloud.h"
 
 namespace relmap::load {
@@ -58,15 +61,56 @@ void PrintProgress(const LoadProgress& progress) {
                static_cast<unsigned long long>(progress.exhausted));
 }
 
-// Deletes every session created so far (those with an id).
-void DeleteSessions(client::RelevanceClient& client, const std::vector<LoadSession>& sessions) {
-  for (const LoadSession& session : sessions) {
-    if (session.handle.id.empty()) continue;
-    if (const grpc::Status status = client.DeleteSession(session.handle); !status.ok()) {
-      std::fprintf(stderr, "relmap-load: DeleteSession %s: %s\n", session.handle.id.c_str(),
-                   status.error_message().c_str());
+// The soak mode: prints its summary, writes the CSV and the plot, and checks the growth
+// after the last rest.
+int Soak(const LoadOptions& options, client::RelevanceClient& client, pid_t server_pid,
+         const LoadCloud& cloud) {
+  SoakPlan plan;
+  plan.rounds = options.soak_rounds;
+  plan.sessions = options.sessions;
+  plan.rest_seconds = options.rest_seconds;
+  plan.seed = options.seed;
+  plan.load.cycles = options.cycles;
+  plan.load.seconds = options.seconds;
+  plan.load.deadline =
+      std::chrono::milliseconds(static_cast<long long>(options.deadline_seconds * 1000));
+  if (options.max_attempts > 0) plan.load.retry.max_attempts = options.max_attempts;
+  StatusOr<SoakResults> soak = RunSoak(
+      client, server_pid, cloud, plan,
+      [](const std::string& line) { std::fprintf(stderr, "relmap-load: %s\n", line.c_str()); });
+  if (!soak.ok()) return Failure(soak.status().message());
+  std::printf("soak: %d rounds of %d sessions (%s), baseline RSS %.1f MiB\n", plan.rounds,
+              plan.sessions, cloud.description.c_str(), soak->baseline_rss_mib);
+  std::printf("round  cycles  peak RSS MiB  after deletion MiB\n");
+  std::uint64_t failed = 0;
+  for (std::size_t i = 0; i < soak->rounds.size(); ++i) {
+    const SoakRound& r = soak->rounds[i];
+    std::printf("%5zu  %6llu  %12.1f  %18.1f\n", i + 1, static_cast<unsigned long long>(r.cycles),
+                r.peak_rss_mib, r.rested_rss_mib);
+    failed += r.failed_sessions;
+  }
+  if (failed > 0)
+    std::printf("failed sessions: %llu, first: %s\n", static_cast<unsigned long long>(failed),
+                soak->first_failure.c_str());
+  if (!options.csv_path.empty()) {
+    if (Status written = WriteSoakCsv(*soak, options.csv_path); !written.ok()) {
+      return Failure(written.message());
     }
   }
+  if (!options.png_path.empty()) {
+    const std::string title = "relmap-server RSS, " + std::to_string(plan.sessions) +
+                              " sessions per round, " + cloud.description;
+    if (Status written = WriteSoakPlot(*soak, title, options.png_path); !written.ok()) {
+      return Failure(written.message());
+    }
+  }
+  const double growth = soak->rounds.back().rested_rss_mib - soak->baseline_rss_mib;
+  if (options.max_rested_growth_mib >= 0 && growth > options.max_rested_growth_mib) {
+    std::printf("FAILED: %.1f MiB above the baseline after the last rest, more than %.1f\n", growth,
+                options.max_rested_growth_mib);
+    return 1;
+  }
+  return failed == 0 ? 0 : 1;
 }
 
 int Run(const LoadOptions& options) {
@@ -114,20 +158,21 @@ int Run(const LoadOptions& options) {
     client->set_admin_key(key);
   }
 
+  if (options.soak_rounds > 0) {
+    if (server_pid <= 0) return Failure("a soak reads the server's memory: give --server-pid");
+    const int status = Soak(options, *client, server_pid, *cloud);
+    client.reset();
+    if (launched) launched->Stop();
+    return status;
+  }
+
   report.before = MemoryOf(server_pid);
   // Session seeds are a stream of relmap::Random seeded by --seed: the same flags create the
   // same sessions, which then draw the same targets and learn the same labels.
   Random seeds(options.seed);
-  std::vector<LoadSession> sessions(static_cast<std::size_t>(options.sessions));
-  for (LoadSession& session : sessions) {
-    session.seed = seeds.NextBits();
-    v1::SessionConfig config;
-    config.set_seed(session.seed);
-    if (const grpc::Status status = client->CreateSession(config, &session.handle); !status.ok()) {
-      DeleteSessions(*client, sessions);
-      return Failure("CreateSession on " + address + ": " + status.error_message());
-    }
-  }
+  auto created = CreateLoadSessions(*client, options.sessions, seeds);
+  if (!created.ok()) return Failure(created.status().message() + " (server " + address + ")");
+  const std::vector<LoadSession> sessions = std::move(created).value();
   report.after_sessions = MemoryOf(server_pid);
 
   LoadPlan plan;
@@ -141,7 +186,7 @@ int Run(const LoadOptions& options) {
 
   // Deleting the sessions separates what they hold from what the server keeps
   // anyway (allocator arenas, thread stacks): it frees their frame caches.
-  DeleteSessions(*client, sessions);
+  DeleteLoadSessions(*client, sessions);
   report.after_delete = MemoryOf(server_pid);
   if (launched) {
     // The connection goes first: the server's graceful stop waits seconds for an
@@ -161,5 +206,11 @@ int Run(const LoadOptions& options) {
 }  // namespace relmap::load
 
 int main(int argc, char** argv) {
-  return relmap::load::Run(relmap::load::ParseLoadOptions(argc, argv, RELMAP_SERVER_BINARY));
+  // The soak's sampler thread may fail to start (std::system_error).
+  try {
+    return relmap::load::Run(relmap::load::ParseLoadOptions(argc, argv, RELMAP_SERVER_BINARY));
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "relmap-load: %s\n", error.what());
+    return 2;
+  }
 }
