@@ -112,6 +112,16 @@ std::vector<ChangeDetectorConfig> EveryMethod() {
   return {visibility, with_colour, paper};
 }
 
+// `cloud` and its supervoxels (default settings): all of a frame that ChangeBefore reads.
+StatusOr<Frame> SegmentedFrame(const Cloud& cloud) {
+  StatusOr<Segmentation> segmentation = ExtractSupervoxels(cloud, SupervoxelConfig{});
+  if (!segmentation.ok()) return segmentation.status();
+  Frame frame;
+  frame.cloud = cloud;
+  frame.segmentation = *segmentation;
+  return frame;
+}
+
 TEST(ChangeBefore, GivesTheChangeDetectorsAnswerOfTheFullFrame) {
   RELMAP_LOAD_REAL_CLOUD(mug, "table_scene_mug_stereo_textured.pcd");
   RELMAP_LOAD_REAL_CLOUD(static_1, "kinect_static_seq_1.pcd");
@@ -120,17 +130,15 @@ TEST(ChangeBefore, GivesTheChangeDetectorsAnswerOfTheFullFrame) {
   // The mug scene with a target gone (moved), and two frames of a static scene from a
   // camera that moved a little (not moved, after the camera-motion compensation).
   for (const Cloud* before : {&mug, &static_1}) {
-    Frame frame;
-    frame.cloud = *before;
-    StatusOr<Segmentation> seg = ExtractSupervoxels(*before, SupervoxelConfig{});
-    ASSERT_TRUE(seg.ok()) << seg.status().message();
-    frame.segmentation = *seg;
+    StatusOr<Frame> frame = SegmentedFrame(*before);
+    ASSERT_TRUE(frame.ok()) << frame.status().message();
+    const std::vector<Supervoxel>& supervoxels = frame->segmentation.supervoxels;
     for (const ChangeDetectorConfig& config : EveryMethod()) {
-      const ChangeBefore compact = ChangeBefore::Of(frame, config);
-      ASSERT_EQ(compact.supervoxels(), seg->supervoxels.size());
+      const ChangeBefore compact = ChangeBefore::Of(*frame, config);
+      ASSERT_EQ(compact.supervoxels(), supervoxels.size());
       // Every 60th supervoxel: spread over the scene, few enough for the octree method.
-      for (std::size_t s = 0; s < seg->supervoxels.size(); s += 60) {
-        const Supervoxel& target = seg->supervoxels[s];
+      for (std::size_t s = 0; s < supervoxels.size(); s += 60) {
+        const Supervoxel& target = supervoxels[s];
         StatusOr<ChangeInput> input = compact.Expand(static_cast<std::uint32_t>(s));
         ASSERT_TRUE(input.ok()) << input.status().message();
         EXPECT_EQ(input->target.point_indices, target.point_indices);
@@ -154,25 +162,19 @@ TEST(ChangeBefore, GivesTheChangeDetectorsAnswerOfTheFullFrame) {
 
 TEST(ChangeBefore, TakesUnderAMegabyteForAKinectFrame) {
   RELMAP_LOAD_REAL_CLOUD(mug, "table_scene_mug_stereo_textured.pcd");
-  Frame frame;
-  frame.cloud = mug;
-  StatusOr<Segmentation> seg = ExtractSupervoxels(mug, SupervoxelConfig{});
-  ASSERT_TRUE(seg.ok());
-  frame.segmentation = *seg;
+  StatusOr<Frame> frame = SegmentedFrame(mug);
+  ASSERT_TRUE(frame.ok());
   // The decoded cloud alone is 640 x 480 x 32 bytes = 9.8 MB.
-  EXPECT_LT(ChangeBefore::Of(frame, ChangeDetectorConfig{}).bytes(), 1u << 20);
+  EXPECT_LT(ChangeBefore::Of(*frame, ChangeDetectorConfig{}).bytes(), 1u << 20);
 }
 
 TEST(ChangeBefore, RefusesASupervoxelTheFrameDoesNotHave) {
   RELMAP_LOAD_REAL_CLOUD(mug, "table_scene_mug_stereo_textured.pcd");
-  Frame frame;
-  frame.cloud = mug;
-  StatusOr<Segmentation> seg = ExtractSupervoxels(mug, SupervoxelConfig{});
-  ASSERT_TRUE(seg.ok());
-  frame.segmentation = *seg;
-  const ChangeBefore compact = ChangeBefore::Of(frame, ChangeDetectorConfig{});
-  EXPECT_EQ(compact.Expand(static_cast<std::uint32_t>(seg->supervoxels.size())).status().code(),
-            StatusCode::kInvalidArgument);
+  StatusOr<Frame> frame = SegmentedFrame(mug);
+  ASSERT_TRUE(frame.ok());
+  const ChangeBefore compact = ChangeBefore::Of(*frame, ChangeDetectorConfig{});
+  const auto past_the_last = static_cast<std::uint32_t>(frame->segmentation.supervoxels.size());
+  EXPECT_EQ(compact.Expand(past_the_last).status().code(), StatusCode::kInvalidArgument);
 }
 
 }  // namespace
