@@ -28,6 +28,7 @@ constexpr std::string_view kUsage =
     "                     [--max-threads 16] [--metrics-listen 127.0.0.1:9464]\n"
     "                     [--metrics-port-file PATH] [--frames-per-session 8]\n"
     "                     [--max-concurrent-frames CORES] [--max-queued-frames THREADS/2]\n"
+    "                     [--max-frame-wait-ms 60000]\n"
     "                     [--store sqlite:PATH|postgres://...] [--lease-seconds 10]\n"
     "                     [--drain-seconds 0] [--session-idle-expiry-seconds 0]\n"
     "  --listen      address to serve on; port 0 picks a free port\n"
@@ -63,6 +64,8 @@ constexpr std::string_view kUsage =
     "  --max-queued-frames  such calls waiting for a slot, first come first served (default\n"
     "                half of --max-threads, leaving the rest to cheap calls); more\n"
     "                get RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms trailer\n"
+    "  --max-frame-wait-ms  the longest such a call waits for its turn before it is\n"
+    "                refused; its deadline ends it sooner (default 60000, at most 600000)\n"
     "  --max-features-per-request  feature vectors in one ClassifyFeatures, AddSamples or\n"
     "                ImportSession (default 100000; more → RESOURCE_EXHAUSTED)\n"
     "  --config FILE  settings as lines 'name value' (the flag names without --)\n"
@@ -93,7 +96,8 @@ constexpr std::string_view kSettings[] = {"listen",
                                           "max-features-per-request",
                                           "frames-per-session",
                                           "max-concurrent-frames",
-                                          "max-queued-frames"};
+                                          "max-queued-frames",
+                                          "max-frame-wait-ms"};
 
 void Apply(ServerOptions& options, std::string_view name, const std::string& value) {
   using relmap::tools::ExitWithError;
@@ -131,6 +135,8 @@ void Apply(ServerOptions& options, std::string_view name, const std::string& val
     options.max_concurrent_frames = static_cast<std::size_t>(number());
   } else if (name == "max-queued-frames") {
     options.max_queued_frames = static_cast<std::size_t>(number());
+  } else if (name == "max-frame-wait-ms") {
+    options.max_frame_wait_ms = static_cast<long long>(number());
   } else if (name == "frames-per-session") {
     options.frames_per_session = static_cast<std::size_t>(number());
   } else if (name == "snapshot-every") {
@@ -233,6 +239,10 @@ ServerOptions ParseServerOptions(int argc, char** argv) {
   if (options.frames_per_session > kMaxFramesPerSession) {
     ExitWithError("relmap-server", "--frames-per-session must lie in [1, " +
                                        std::to_string(kMaxFramesPerSession) + "]");
+  }
+  if (options.max_frame_wait_ms < 1 || options.max_frame_wait_ms > kMaxFrameWaitMs) {
+    ExitWithError("relmap-server",
+                  "--max-frame-wait-ms must lie in [1, " + std::to_string(kMaxFrameWaitMs) + "]");
   }
   if (options.max_concurrent_frames == 0) {
     options.max_concurrent_frames = std::max(1u, std::thread::hardware_concurrency());

@@ -9,6 +9,9 @@ namespace relmap::server {
 
 // The most frames a session may keep: each holds its cloud's supervoxels and features.
 inline constexpr std::size_t kMaxFramesPerSession = 256;
+// The longest a frame may wait for a processing slot: ten minutes, past any client's
+// patience, so that a mistyped setting cannot park worker threads for days.
+inline constexpr long long kMaxFrameWaitMs = 600000;
 
 struct ServerOptions {
   std::string listen = "127.0.0.1:50051";
@@ -41,6 +44,10 @@ struct ServerOptions {
   // waiting for a slot, beyond which they are refused (session/frame_admission.h).
   std::size_t max_concurrent_frames = 0;  // 0: std::thread::hardware_concurrency()
   std::size_t max_queued_frames = 0;      // 0: half of max_threads
+  // The longest a call waits in that queue before it is refused; its client's deadline
+  // ends it sooner. Longer than one round-robin turn of all sessions, or a refused call
+  // loses its place and waits the turn again (docs/reliability.md, "Fairness").
+  long long max_frame_wait_ms = 60000;
   std::string metrics_listen;
   std::string metrics_port_file;
 };

@@ -45,6 +45,7 @@ service::ServiceLimits ServiceLimitsOf(const ServerOptions& options) {
   limits.max_features_per_request = options.max_features_per_request;
   limits.concurrent_frames = options.max_concurrent_frames;
   limits.queued_frames = options.max_queued_frames;
+  limits.max_frame_wait = std::chrono::milliseconds(options.max_frame_wait_ms);
   return limits;
 }
 

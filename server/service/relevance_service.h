@@ -28,7 +28,7 @@ struct ServiceLimits {
   // waiting, and the longest wait before RESOURCE_EXHAUSTED.
   std::size_t concurrent_frames = 2;
   std::size_t queued_frames = 4;
-  std::chrono::milliseconds max_frame_wait{10000};
+  std::chrono::milliseconds max_frame_wait = session::FrameIntakeLimits{}.max_wait;
 };
 
 class RelevanceService final : public v1::RelevanceService::Service {

@@ -37,7 +37,7 @@ struct FrameIntakeLimits {
   // Clouds processed at once, clouds waiting, and the longest wait.
   std::size_t concurrent = 2;
   std::size_t queued = 4;
-  std::chrono::milliseconds max_wait{10000};
+  std::chrono::milliseconds max_wait{60000};
 };
 
 class FrameIntake {

@@ -1,6 +1,7 @@
 // A server with more clouds to process than --max-concurrent-frames and
 // --max-queued-frames allow turns the rest away at once with RESOURCE_EXHAUSTED and a
-// pushback trailer, and the client library waits it out and repeats them.
+// pushback trailer, and the client library waits it out and repeats them; a call that
+// waits longer than --max-frame-wait-ms is turned away too.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -60,16 +61,20 @@ TEST(BusyServer, TurnsCloudsAwayBeyondItsQueueWithAPushback) {
   EXPECT_EQ(other.load(), 0);
 }
 
-TEST(BusyServer, TheClientLibraryRepeatsWhatABusyServerTurnedAway) {
-  testing::ServerProcess server({"--max-concurrent-frames", "1", "--max-queued-frames", "1"});
-  client::ClientOptions options;
-  options.address = server.address();
-  options.retry.max_attempts = 100;  // the deadline (30 s) bounds the wait
-  client::RelevanceClient client(options);
+// What happened to kClients clouds sent at once through the client library, which
+// repeats a call a busy server turned away until it is served.
+struct SentAtOnce {
+  int served = 0;
+  std::size_t turned_away = 0;  // the repeats
+};
+
+SentAtOnce SendCloudsAtOnce(const std::vector<std::string>& server_flags) {
+  testing::ServerProcess server(server_flags);
+  client::RelevanceClient client(server.address());
   client::SessionHandle session;
-  ASSERT_TRUE(client.CreateSession({}, &session).ok());
-  const v1::Cloud cloud = testing::PackedTabletop(640, 480);
-  std::atomic<int> ok = 0;
+  EXPECT_TRUE(client.CreateSession({}, &session).ok());
+  const v1::Cloud cloud = testing::PackedTabletop(320, 240);
+  std::atomic<int> served = 0;
   std::vector<std::thread> clients;
   for (int i = 0; i < kClients; ++i) {
     clients.emplace_back([&] {
@@ -77,12 +82,29 @@ TEST(BusyServer, TheClientLibraryRepeatsWhatABusyServerTurnedAway) {
       const grpc::Status status =
           client.ComputeMaps(session, cloud, &response, client::PointLabels::kOmit);
       EXPECT_TRUE(status.ok()) << status.error_message();
-      if (status.ok()) ++ok;
+      if (status.ok()) ++served;
     });
   }
   for (std::thread& t : clients) t.join();
-  EXPECT_EQ(ok.load(), kClients);
-  EXPECT_GT(client.retries(), 0u);
+  return {.served = served.load(), .turned_away = client.retries()};
+}
+
+TEST(BusyServer, ACallWaitsForItsTurnUpToTheLongestWait) {
+  // One slot and room for every other call to wait: with the default wait (60 s)
+  // each waits its turn; with 1 ms, each waiting call is turned away.
+  const std::vector<std::string> queue = {"--max-concurrent-frames", "1", "--max-queued-frames",
+                                          std::to_string(kClients)};
+  EXPECT_EQ(SendCloudsAtOnce(queue).turned_away, 0u);
+  std::vector<std::string> impatient = queue;
+  impatient.insert(impatient.end(), {"--max-frame-wait-ms", "1"});
+  EXPECT_GT(SendCloudsAtOnce(impatient).turned_away, 0u);
+}
+
+TEST(BusyServer, TheClientLibraryRepeatsWhatABusyServerTurnedAway) {
+  const SentAtOnce sent =
+      SendCloudsAtOnce({"--max-concurrent-frames", "1", "--max-queued-frames", "1"});
+  EXPECT_EQ(sent.served, kClients);
+  EXPECT_GT(sent.turned_away, 0u);
 }
 
 }  // namespace
