@@ -37,7 +37,8 @@ struct SupervoxelDisplacement {
   }
   // At least kObjectFraction of the points: the same majority that makes a supervoxel
   // an object makes it moved, so that a mixed supervoxel is judged by what most of it
-  // is, and an object turned about its centre of mass (which barely moves) still moved.
+  // is, and an object turned about its centre of mass (which barely moves) still moved,
+  // unless the turn is one its shape and colour hide (a plain ball's: visible_motion.h).
   bool moved() const { return points > 0 && share() >= kObjectFraction; }
 };
 

@@ -9,6 +9,7 @@
 #include "ode_math.h"
 #include "point_distance.h"
 #include "scene_dynamics.h"
+#include "visible_motion.h"
 
 namespace relmap::sim {
 namespace {
@@ -24,6 +25,32 @@ constexpr double kSupportRayLift = 0.01;
 constexpr double kFacingUp = 0.906;
 constexpr int kMaxSupportSurfaces = 8;
 constexpr double kSupportStepThrough = 1e-4;  // m past a slanted surface
+
+// What of `body`'s turns a camera cannot see (visible_motion.h), where it is now: a plain
+// sphere, cylinder or capsule of one geom (ODE puts a cylinder's and a capsule's axis on
+// the geom's z).
+ShapeSymmetry SymmetryOf(const SimBody& body) {
+  ShapeSymmetry symmetry;
+  if (body.geoms.size() != 1 || TagOf(body.geoms.front()).material.texture != TextureKind::kNone) {
+    return symmetry;
+  }
+  const dGeomID geom = body.geoms.front();
+  const Eigen::Isometry3d pose = PoseOf(geom);
+  symmetry.centre = pose.translation();
+  switch (dGeomGetClass(geom)) {
+    case dSphereClass:
+      symmetry.kind = ShapeSymmetry::Kind::kAboutPoint;
+      break;
+    case dCylinderClass:
+    case dCapsuleClass:
+      symmetry.kind = ShapeSymmetry::Kind::kAboutAxis;
+      symmetry.axis = pose.linear().col(2).normalized();
+      break;
+    default:
+      break;
+  }
+  return symmetry;
+}
 
 // The candidate directions, as angles: evenly spaced, rotated by a random
 // offset, in a random order.
@@ -124,8 +151,11 @@ PushReport ExecutePush(const Eigen::Vector3d& target, double motion_threshold, O
 
   // ODE bodies sit at their centre of mass: the pose's translation is the centre's position.
   std::vector<Eigen::Isometry3d> before(bodies.size(), Eigen::Isometry3d::Identity());
+  std::vector<ShapeSymmetry> symmetry(bodies.size());
   for (const SimBody& b : bodies) {
-    if (b.moveable) before[b.id] = PoseOf(b.body);
+    if (!b.moveable) continue;
+    before[b.id] = PoseOf(b.body);
+    symmetry[b.id] = SymmetryOf(b);
   }
   const double dt = world.step_seconds();
   const Eigen::Vector3d velocity = physics.push_speed * direction;
@@ -142,7 +172,8 @@ PushReport ExecutePush(const Eigen::Vector3d& target, double motion_threshold, O
   for (const SimBody& b : bodies) {
     if (!b.moveable) continue;
     const Eigen::Isometry3d after = PoseOf(b.body);
-    report.body_motions[b.id] = (after * before[b.id].inverse()).cast<float>();
+    report.body_motions[b.id] =
+        VisibleMotion(after * before[b.id].inverse(), symmetry[b.id]).cast<float>();
     if ((after.translation() - before[b.id].translation()).norm() > motion_threshold) {
       report.moved_bodies.push_back(b.id);
     }

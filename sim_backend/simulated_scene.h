@@ -44,9 +44,10 @@ struct PushReport {
   std::vector<std::int32_t> moved_bodies;
   // Simulated seconds, pushing and settling.
   double simulated_seconds = 0;
-  // Per body id, its rigid motion over the push in the camera frame: a point p of body b
-  // before the push is at body_motions[b] * p after it (identity for static bodies).
-  // Empty when the push was not executed.
+  // Per body id, its rigid motion over the push in the camera frame, as a camera sees it:
+  // a point p of body b before the push is at body_motions[b] * p after it, less a turn
+  // the body's shape and colour hide (a plain ball's about its centre: visible_motion.h);
+  // identity for static bodies. Empty when the push was not executed.
   std::vector<Eigen::Isometry3f> body_motions;
   // The scene's motion threshold (m), by which a point counts as displaced.
   double motion_threshold = 0;

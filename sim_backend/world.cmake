@@ -14,7 +14,7 @@ add_library(relmap_sim_world STATIC
   scene_settings.cpp scene_validation.cpp scene_file.cpp seeded_random.cpp textures.cpp
   kinect_noise_model.cpp ode_world.cpp ode_bodies.cpp ray_casting.cpp ray_camera.cpp
   structured_light_camera.cpp point_distance.cpp scene_dynamics.cpp
-  push_primitive.cpp ode_scene.cpp)
+  visible_motion.cpp push_primitive.cpp ode_scene.cpp)
 target_include_directories(relmap_sim_world PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
 target_compile_definitions(relmap_sim_world
   PRIVATE RELMAP_SIM_SCENES_DIR="${CMAKE_CURRENT_SOURCE_DIR}/scenes")

@@ -53,6 +53,23 @@ TEST(Push, APushAtAFreeBallMovesIt) {
   EXPECT_TRUE(scene->AtRest());
 }
 
+TEST(Push, ReportsAPlainBallsMotionWithoutTheTurnNoCameraSees) {
+  // The ball rolls: its body turns, but a plain sphere looks the same turned about its
+  // centre, so the reported motion is its centre's translation (visible_motion.h).
+  auto scene = LoadOrDie(kTableBlockBall);
+  const Eigen::Vector3d before = scene->BodyPose(kBall).translation();
+  const Eigen::Matrix3d turn_before = scene->BodyPose(kBall).linear();
+  const PushReport report = scene->Push(InCamera(*scene, before + Eigen::Vector3d(0, 0, 0.02)), 3);
+  ASSERT_TRUE(report.executed);
+  const Eigen::Matrix3d turned = scene->BodyPose(kBall).linear() * turn_before.transpose();
+  EXPECT_GT(Eigen::AngleAxisd(turned).angle(), 0.1);  // it rolled
+  const Eigen::Isometry3f& seen = report.body_motions[kBall];
+  EXPECT_TRUE(seen.linear().isApprox(Eigen::Matrix3f::Identity(), 1e-5f));
+  const Eigen::Vector3f centre = InCamera(*scene, before);
+  const Eigen::Vector3f moved = InCamera(*scene, scene->BodyPose(kBall).translation());
+  EXPECT_TRUE((seen * centre).isApprox(moved, 1e-4f));
+}
+
 TEST(Push, PushesFromEverySeedMoveTheBall) {
   for (std::uint64_t seed = 0; seed < 8; ++seed) {
     auto scene = LoadOrDie(kTableBlockBall);
