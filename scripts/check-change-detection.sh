@@ -18,9 +18,12 @@ method=${METHOD:-visibility}
 out=${OUT:-out/change-detection}/$method
 iterations=${ITERATIONS:-100}
 replications=${REPLICATIONS:-2}
-scenes=(MoveableBalls MoveableBricks1 MoveableBricks2 WhiteMoveableBalls WhiteMoveableBricks
-  SimKitchen ShelfClutter Workbench KitchenCounter)
-resolutions=(320x240 640x480)
+# SCENES / RESOLUTIONS (space-separated) run a subset or another order; the table
+# covers every run in the folder.
+all_scenes="MoveableBalls MoveableBricks1 MoveableBricks2 WhiteMoveableBalls WhiteMoveableBricks"
+all_scenes+=" SimKitchen ShelfClutter Workbench KitchenCounter"
+read -r -a scenes <<<"${SCENES:-$all_scenes}"
+read -r -a resolutions <<<"${RESOLUTIONS:-320x240 640x480}"
 mkdir -p "$out"
 for scene in "${scenes[@]}"; do
   file=sim_backend/scenes/$scene.json
