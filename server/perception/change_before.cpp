@@ -3,6 +3,7 @@
 
 #include <bit>
 
+#include "perception/change_object.h"
 #include "perception/word_planes.h"
 
 namespace relmap::perception {
@@ -27,6 +28,10 @@ ChangeBefore ChangeBefore::Of(const Frame& frame, const ChangeDetectorConfig& co
   }
   before.voxel_positions_ = PackWords(words);
   before.voxel_offsets_.shrink_to_fit();
+  if (config.method == ChangeMethod::kVisibility) {
+    before.object_labels_ =
+        ObjectLabels(frame.segmentation.supervoxels, config.object_smooth_angle_deg);
+  }
   return before;
 }
 
@@ -42,9 +47,23 @@ StatusOr<ChangeInput> ChangeBefore::Expand(std::uint32_t supervoxel_id) const {
   auto labels = UnpackWords(point_labels_, points_);
   if (!labels.ok()) return labels.status();
   input.target.id = supervoxel_id;
+  // The object's other supervoxels, in id order: where each sits in input.object.
+  std::vector<std::int32_t> slot(supervoxels(), -1);
+  if (!object_labels_.empty()) {
+    for (std::uint32_t id = 0; id < supervoxels(); ++id) {
+      if (id == supervoxel_id || object_labels_[id] != object_labels_[supervoxel_id]) continue;
+      slot[id] = static_cast<std::int32_t>(input.object.size());
+      input.object.emplace_back().id = id;
+    }
+  }
   for (std::size_t i = 0; i < labels->size(); ++i) {
-    if ((*labels)[i] == supervoxel_id)
+    const std::uint32_t label = (*labels)[i];
+    if (label == supervoxel_id) {
       input.target.point_indices.push_back(static_cast<std::int32_t>(i));
+    } else if (label < slot.size() && slot[label] >= 0) {
+      input.object[static_cast<std::size_t>(slot[label])].point_indices.push_back(
+          static_cast<std::int32_t>(i));
+    }
   }
   auto positions = UnpackWords(voxel_positions_, 3 * std::size_t{voxel_offsets_.back()});
   if (!positions.ok()) return positions.status();
@@ -62,7 +81,14 @@ StatusOr<ChangeInput> ChangeBefore::Expand(std::uint32_t supervoxel_id) const {
 
 std::size_t ChangeBefore::bytes() const {
   return cloud_.bytes() + point_labels_.capacity() + voxel_positions_.capacity() +
-         voxel_offsets_.capacity() * sizeof(std::uint32_t);
+         (voxel_offsets_.capacity() + object_labels_.capacity()) * sizeof(std::uint32_t);
+}
+
+std::vector<const Supervoxel*> ChangeInput::ObjectPointers() const {
+  std::vector<const Supervoxel*> pointers;
+  pointers.reserve(object.size());
+  for (const Supervoxel& s : object) pointers.push_back(&s);
+  return pointers;
 }
 
 }  // namespace relmap::perception

@@ -1,6 +1,7 @@
 // What the change detector needs of a frame, kept compact until an outcome comes with the
 // cloud after the push (docs/method.md §5): the frame's cloud (compact_cloud.h), which
-// supervoxel each of its points belongs to, and the positions of every supervoxel's voxels.
+// supervoxel each of its points belongs to, the positions of every supervoxel's voxels, and
+// which object each supervoxel is on (change_object.h).
 // The features, normals and the rest of the segmentation are not kept. ~0.3-0.8 MB for a
 // 640x480 frame, where the Frame itself holds ~12 MB.
 #pragma once
@@ -23,6 +24,11 @@ struct ChangeInput {
   // point_indices (ascending, as VCCS labelled them) and the voxels' positions; the
   // voxels' normals and colours are zero, and centroid, rgb, neighbours are not set.
   Supervoxel target;
+  // The other supervoxels on the target's object (kVisibility only): id and point_indices.
+  std::vector<Supervoxel> object;
+
+  // `object` as DetectChange takes it.
+  std::vector<const Supervoxel*> ObjectPointers() const;
 };
 
 class ChangeBefore {
@@ -47,6 +53,7 @@ class ChangeBefore {
   std::size_t points_ = 0;
   std::string voxel_positions_;  // x y z float bits of every voxel, supervoxel after supervoxel
   std::vector<std::uint32_t> voxel_offsets_{0};  // supervoxel i: [offsets[i], offsets[i+1])
+  std::vector<std::uint32_t> object_labels_;     // per supervoxel (ObjectLabels); kVisibility
 };
 
 }  // namespace relmap::perception

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "common/status.h"
 #include "perception/cloud.h"
@@ -22,6 +24,15 @@ struct ChangeEvidence {
   std::size_t supported_points = 0;
   std::size_t vacated_points = 0;
   std::size_t occluded_points = 0;
+  // The same counts over the target's object (change_object.h), the target included: its
+  // supervoxels and their finite points (counts of a large object are of an even sample,
+  // scaled up). Without the frame's supervoxels the object is the
+  // target alone.
+  std::size_t object_supervoxels = 0;
+  std::size_t object_points = 0;
+  std::size_t object_supported_points = 0;
+  std::size_t object_vacated_points = 0;
+  std::size_t object_occluded_points = 0;
   // The camera motion between the frames that was compensated first.
   double camera_rotation_deg = 0;
   double camera_translation_m = 0;
@@ -39,7 +50,21 @@ struct ChangeEvidence {
 };
 
 // `target` is a supervoxel of `before` (its points and voxels index and lie in `before`).
+// Its object is the target alone.
 StatusOr<ChangeEvidence> DetectChange(const Cloud& before, const Cloud& after,
                                       const Supervoxel& target, const ChangeDetectorConfig& config);
+
+// `object`: the other supervoxels of `before` on the target's object (change_object.h),
+// which the visibility test judges beside the target (docs/method.md §5.1).
+StatusOr<ChangeEvidence> DetectChange(const Cloud& before, const Cloud& after,
+                                      const Supervoxel& target,
+                                      const std::vector<const Supervoxel*>& object,
+                                      const ChangeDetectorConfig& config);
+
+// The target is `frame[target_id]`, `frame` the supervoxels of `before`, and its object
+// is found among them (ObjectOf, with config.object_smooth_angle_deg).
+StatusOr<ChangeEvidence> DetectChange(const Cloud& before, const Cloud& after,
+                                      const std::vector<Supervoxel>& frame, std::uint32_t target_id,
+                                      const ChangeDetectorConfig& config);
 
 }  // namespace relmap::perception

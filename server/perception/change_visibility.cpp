@@ -150,18 +150,66 @@ class NearbyAfterPoints {
   std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> cells_;
 };
 
-}  // namespace
+// The object's points looked up besides the target's, at most (an even sample): a share
+// needs no more.
+constexpr std::size_t kObjectSamples = 2000;
 
-void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxel& target,
-                        const ChangeDetectorConfig& config, ChangeEvidence& e) {
-  std::vector<std::pair<std::size_t, CloudPoint>> points;
-  points.reserve(target.point_indices.size());
-  for (const std::int32_t i : target.point_indices) {
+// What the after frame shows of a set of before-points.
+struct SeenCounts {
+  std::size_t points = 0, supported = 0, vacated = 0, occluded = 0;
+
+  void Add(Seen seen) {
+    supported += seen == Seen::kSupported;
+    vacated += seen == Seen::kVacated;
+    occluded += seen == Seen::kOccluded;
+  }
+  // A set the after frame mostly does not show (holes, the image border after the camera
+  // moved) is not judged: half of it at least must be seen, occluded points included. The
+  // share of vacated points is of those whose pixel still says something about the set's own
+  // surface (still there or seen through): an occluded point only says that something is in
+  // front now, the object itself pushed towards the camera as often as a neighbour knocked in
+  // front of one that stayed, so it counts neither way. And a few points seen through are not
+  // enough: a camera that moved reveals a strip behind every edge (8 of 53 points of a
+  // supervoxel of kinect_static_seq_1 -> 2).
+  bool Moved(double min_fraction, std::size_t min_points) const {
+    const std::size_t shown = supported + vacated + occluded;
+    return 2 * shown >= points && vacated >= min_points &&
+           static_cast<double>(vacated) >= min_fraction * static_cast<double>(supported + vacated);
+  }
+};
+
+// The finite points of `s`, by index into `before`.
+void AppendFinitePoints(const Cloud& before, const Supervoxel& s,
+                        std::vector<std::pair<std::size_t, CloudPoint>>& points) {
+  for (const std::int32_t i : s.point_indices) {
     const CloudPoint p = before.point(static_cast<std::size_t>(i));
     if (Finite(p)) points.emplace_back(static_cast<std::size_t>(i), p);
   }
-  e.target_points = points.size();
-  if (points.empty()) return;
+}
+
+}  // namespace
+
+void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxel& target,
+                        const std::vector<const Supervoxel*>& object,
+                        const ChangeDetectorConfig& config, ChangeEvidence& e) {
+  // The target's points first, then the rest of its object's: every `stride`-th of those, at
+  // most kObjectSamples, so that an object that is a whole table (its flood reaches
+  // what stands on it through a smooth straddling supervoxel) costs no more than a brick. The
+  // object's counts are the sampled ones times the stride.
+  std::vector<std::pair<std::size_t, CloudPoint>> points;
+  AppendFinitePoints(before, target, points);
+  const std::size_t target_count = points.size();
+  std::vector<std::pair<std::size_t, CloudPoint>> rest;
+  for (const Supervoxel* s : object) AppendFinitePoints(before, *s, rest);
+  const std::size_t stride = (rest.size() + kObjectSamples - 1) / kObjectSamples;
+  for (std::size_t k = 0; k < rest.size(); k += std::max<std::size_t>(1, stride)) {
+    points.push_back(rest[k]);
+  }
+  e.target_points = target_count;
+  e.object_supervoxels = 1 + object.size();
+  e.object_points = target_count + rest.size();
+  if (target_count == 0) return;
+  std::vector<Seen> seen_of(points.size(), Seen::kUnknown);
 
   const std::optional<Intrinsics> intrinsics = IntrinsicsOf(before);
   std::optional<CameraMotion> estimate;
@@ -191,21 +239,11 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
     // Only the colour check needs the gain.
     const Eigen::Array3d gain =
         config.colour_tolerance > 0 ? ColourGain(before, seen, config) : Eigen::Array3d::Ones();
-    for (const auto& [index, p] : points) {
-      switch (SeenAlongRay(seen, before.width(), before.height(), index, p, Tolerance(config, p.z),
-                           config.search_window, gain, config.colour_tolerance)) {
-        case Seen::kSupported:
-          ++e.supported_points;
-          break;
-        case Seen::kVacated:
-          ++e.vacated_points;
-          break;
-        case Seen::kOccluded:
-          ++e.occluded_points;
-          break;
-        case Seen::kUnknown:
-          break;
-      }
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const auto& [index, p] = points[k];
+      seen_of[k] =
+          SeenAlongRay(seen, before.width(), before.height(), index, p, Tolerance(config, p.z),
+                       config.search_window, gain, config.colour_tolerance);
     }
   } else {
     Eigen::Vector3f lo = Position(points.front().second), hi = lo;
@@ -221,28 +259,38 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
       e.camera_translation_m = estimate->translation_m;
     }
     const NearbyAfterPoints nearby(after, motion, lo.array() - cell, hi.array() + cell, cell);
-    for (const auto& [index, p] : points) {
-      if (nearby.AnyWithin(Position(p), static_cast<float>(Tolerance(config, p.z)))) {
-        ++e.supported_points;
-      } else {
-        ++e.vacated_points;
-      }
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const auto& [index, p] = points[k];
+      seen_of[k] = nearby.AnyWithin(Position(p), static_cast<float>(Tolerance(config, p.z)))
+                       ? Seen::kSupported
+                       : Seen::kVacated;
     }
   }
-  // A target the after frame mostly does not show (holes, the image border after the camera
-  // moved) is not judged: half of it at least must be seen, occluded points included. The
-  // share of vacated points is of those whose pixel still says something about the target's
-  // own surface (still there or seen through): an occluded point only says that something is
-  // in front now, the target itself pushed towards the camera as often as a neighbour knocked
-  // in front of a target that stayed, so it counts neither way. And a few points seen through
-  // are not enough: a camera that moved reveals a strip behind every edge (8 of 53 points of
-  // a supervoxel of kinect_static_seq_1 -> 2).
-  const std::size_t shown = e.supported_points + e.vacated_points + e.occluded_points;
-  const std::size_t surface = e.supported_points + e.vacated_points;
-  e.moved = 2 * shown >= e.target_points &&
-            e.vacated_points >= static_cast<std::size_t>(config.min_vacated_points) &&
-            static_cast<double>(e.vacated_points) >=
-                config.min_vacated_fraction * static_cast<double>(surface);
+  SeenCounts of_target, of_rest;
+  of_target.points = target_count;
+  of_rest.points = points.size() - target_count;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    (k < target_count ? of_target : of_rest).Add(seen_of[k]);
+  }
+  const std::size_t weight = std::max<std::size_t>(1, stride);
+  SeenCounts of_object;
+  of_object.points = target_count + rest.size();
+  of_object.supported = of_target.supported + weight * of_rest.supported;
+  of_object.vacated = of_target.vacated + weight * of_rest.vacated;
+  of_object.occluded = of_target.occluded + weight * of_rest.occluded;
+  e.supported_points = of_target.supported;
+  e.vacated_points = of_target.vacated;
+  e.occluded_points = of_target.occluded;
+  e.object_supported_points = of_object.supported;
+  e.object_vacated_points = of_object.vacated;
+  e.object_occluded_points = of_object.occluded;
+  // A push moves an object, not a supervoxel: the target moved with its object when the
+  // object shows the vacated share of a move (a brick slid along its own top: its top's
+  // pixels see the same surface, its trailing faces are seen through; a small object whose
+  // target supervoxel alone has too few points to count).
+  const auto min_points = static_cast<std::size_t>(config.min_vacated_points);
+  e.moved = of_target.Moved(config.min_vacated_fraction, min_points) ||
+            of_object.Moved(config.min_vacated_fraction, min_points);
 }
 
 }  // namespace relmap::perception

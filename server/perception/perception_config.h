@@ -170,14 +170,18 @@ struct ChangeDetectorConfig {
   // kinect_static_seq_* 25 of 45 points of one supervoxel change by more than 64 levels:
   // off until it holds on real data.
   double colour_tolerance = 0;
-  // Moved iff at least this share of the target's points that the after frame shows still
-  // there or vacated was seen through (occluded points, behind something nearer, say neither),
-  // at least min_vacated_points of them, and the after frame shows at least half of the target
-  // (occluded points included). On the simulated setups with an
-  // ideal camera, pushes that moved their target left 0.44-1.0 of it vacated and pushes that did
-  // not 0-0.03 (docs/results.md §C).
+  // The target moved iff it or its object (change_object.h) did, each judged alike: at least
+  // this share of its points that the after frame shows still there or vacated was seen
+  // through (occluded points, behind something nearer, say neither), at least
+  // min_vacated_points of them, and the after frame shows at least half of it (occluded points
+  // included). On the simulated setups with an ideal camera, pushes that moved their target
+  // left 0.44-1.0 of it vacated and pushes that did not 0-0.03 (docs/results.md §C).
   double min_vacated_fraction = 0.2;
   int min_vacated_points = 10;
+  // Two adjacent supervoxels lie on one object when their connection is convex or their
+  // normals are less than this apart (change_object.h; LCCP's concavity tolerance, Stein et
+  // al. 2014, whose default is 10 degrees).
+  double object_smooth_angle_deg = 10.0;
   // Register the after frame onto the before frame first (camera_motion.h): ICP of
   // motion_samples after-points, pairs farther apart than motion_max_distance left out (what
   // the push moved). 5 cm covers the 1.2 degrees and 1.3 cm of kinect_static_seq_* at 2 m.

@@ -82,6 +82,8 @@ constexpr FieldRange kSessionConfigRanges[] = {
     OpenBelow("change_detector.min_vacated_fraction", 0, 1, "", "change.min_vacated_fraction"),
     Closed("change_detector.min_vacated_points", 1, 100000, "", "change.min_vacated_points"),
     Closed("change_detector.colour_tolerance", 0, 255, "", "change.colour_tolerance"),
+    Closed("change_detector.object_smooth_angle_deg", 0, 90, "degrees",
+           "change.object_smooth_angle_deg"),
     Closed("features.fpfh_radius", perception::kMinFpfhRadius, perception::kMaxFpfhRadius, "m"),
 };
 // clang-format on

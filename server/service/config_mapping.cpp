@@ -153,6 +153,9 @@ StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& co
   if (cd.has_min_vacated_fraction()) change.min_vacated_fraction = cd.min_vacated_fraction();
   if (cd.has_min_vacated_points()) change.min_vacated_points = cd.min_vacated_points();
   if (cd.has_colour_tolerance()) change.colour_tolerance = cd.colour_tolerance();
+  if (cd.has_object_smooth_angle_deg()) {
+    change.object_smooth_angle_deg = cd.object_smooth_angle_deg();
+  }
   if (cd.has_compensate_camera_motion()) {
     change.compensate_camera_motion = cd.compensate_camera_motion();
   }
@@ -208,6 +211,7 @@ v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings) {
   cd->set_min_vacated_points(change.min_vacated_points);
   cd->set_compensate_camera_motion(change.compensate_camera_motion);
   cd->set_colour_tolerance(change.colour_tolerance);
+  cd->set_object_smooth_angle_deg(change.object_smooth_angle_deg);
   FeaturesToProto(settings.perception.features, config.mutable_features());
   config.set_seed(settings.classifier.seed);
   config.set_feature_dimension(static_cast<std::uint32_t>(settings.feature_dimension));
@@ -239,6 +243,11 @@ void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence
   out->set_occluded_points(evidence.occluded_points);
   out->set_camera_rotation_deg(evidence.camera_rotation_deg);
   out->set_camera_translation_m(evidence.camera_translation_m);
+  out->set_object_supervoxels(evidence.object_supervoxels);
+  out->set_object_points(evidence.object_points);
+  out->set_object_supported_points(evidence.object_supported_points);
+  out->set_object_vacated_points(evidence.object_vacated_points);
+  out->set_object_occluded_points(evidence.object_occluded_points);
 }
 
 session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud) {

@@ -163,8 +163,8 @@ StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uin
   // is shared, so an eviction meanwhile does not pull it away.
   auto before = frame->change_before.Expand(supervoxel_id);
   if (!before.ok()) return before.status();
-  auto evidence =
-      perception::DetectChange(before->before, after, before->target, settings_.perception.change);
+  auto evidence = perception::DetectChange(before->before, after, before->target,
+                                           before->ObjectPointers(), settings_.perception.change);
   if (!evidence.ok()) return evidence.status();
   const int label = evidence->moved ? 1 : 0;
 

@@ -81,6 +81,11 @@ void ExpectSameEvidence(const ChangeEvidence& full, const ChangeEvidence& compac
   EXPECT_EQ(compact.supported_points, full.supported_points);
   EXPECT_EQ(compact.vacated_points, full.vacated_points);
   EXPECT_EQ(compact.occluded_points, full.occluded_points);
+  EXPECT_EQ(compact.object_supervoxels, full.object_supervoxels);
+  EXPECT_EQ(compact.object_points, full.object_points);
+  EXPECT_EQ(compact.object_supported_points, full.object_supported_points);
+  EXPECT_EQ(compact.object_vacated_points, full.object_vacated_points);
+  EXPECT_EQ(compact.object_occluded_points, full.object_occluded_points);
   EXPECT_EQ(compact.camera_rotation_deg, full.camera_rotation_deg);
   EXPECT_EQ(compact.camera_translation_m, full.camera_translation_m);
   EXPECT_EQ(compact.difference_points, full.difference_points);
@@ -126,7 +131,7 @@ TEST(ChangeBefore, GivesTheChangeDetectorsAnswerOfTheFullFrame) {
   RELMAP_LOAD_REAL_CLOUD(mug, "table_scene_mug_stereo_textured.pcd");
   RELMAP_LOAD_REAL_CLOUD(static_1, "kinect_static_seq_1.pcd");
   RELMAP_LOAD_REAL_CLOUD(static_2, "kinect_static_seq_2.pcd");
-  std::size_t moved = 0, stayed = 0;
+  std::size_t moved = 0, stayed = 0, larger_objects = 0;
   // The mug scene with a target gone (moved), and two frames of a static scene from a
   // camera that moved a little (not moved, after the camera-motion compensation).
   for (const Cloud* before : {&mug, &static_1}) {
@@ -144,20 +149,25 @@ TEST(ChangeBefore, GivesTheChangeDetectorsAnswerOfTheFullFrame) {
         EXPECT_EQ(input->target.point_indices, target.point_indices);
         ASSERT_EQ(input->target.voxels.size(), target.voxels.size());
         const Cloud after = before == &mug ? WithTargetGone(mug, target) : static_2;
-        StatusOr<ChangeEvidence> full = DetectChange(*before, after, target, config);
-        StatusOr<ChangeEvidence> packed = DetectChange(input->before, after, input->target, config);
+        // The full frame finds the target's object itself; the packed one kept it.
+        StatusOr<ChangeEvidence> full =
+            DetectChange(*before, after, supervoxels, static_cast<std::uint32_t>(s), config);
+        StatusOr<ChangeEvidence> packed =
+            DetectChange(input->before, after, input->target, input->ObjectPointers(), config);
         ASSERT_TRUE(full.ok() && packed.ok());
         ExpectSameEvidence(*full, *packed,
                            std::string(ChangeMethodName(config.method)) + " colour " +
                                std::to_string(config.colour_tolerance) + ", supervoxel " +
                                std::to_string(s) + (before == &mug ? " of the mug" : " of static"));
         ++(full->moved ? moved : stayed);
+        larger_objects += full->object_supervoxels > 1;
       }
     }
   }
-  // Both answers were compared, not one of them only.
+  // Both answers were compared, not one of them only, and objects of several supervoxels.
   EXPECT_GT(moved, 0u);
   EXPECT_GT(stayed, 0u);
+  EXPECT_GT(larger_objects, 0u);
 }
 
 TEST(ChangeBefore, TakesUnderAMegabyteForAKinectFrame) {

@@ -50,8 +50,8 @@ TEST(ChangeDetector, SeesNoChangeBetweenFramesOfAStaticScene) {
         if (a == b) continue;
         // Every 30th supervoxel as the target: spread over the whole scene.
         for (std::size_t s = 0; s < seg->supervoxels.size(); s += 30) {
-          StatusOr<ChangeEvidence> e =
-              DetectChange(clouds[b], clouds[a], seg->supervoxels[s], config);
+          StatusOr<ChangeEvidence> e = DetectChange(clouds[b], clouds[a], seg->supervoxels,
+                                                    static_cast<std::uint32_t>(s), config);
           ASSERT_TRUE(e.ok()) << e.status().message();
           EXPECT_FALSE(e->moved) << ChangeMethodName(config.method) << ", frames " << b + 1
                                  << " -> " << a + 1 << ", supervoxel " << s << ": " << Describe(*e);

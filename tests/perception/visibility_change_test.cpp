@@ -7,34 +7,18 @@
 #include <vector>
 
 #include "perception/change_detector.h"
+#include "pinhole_cloud.h"
 
 namespace relmap::perception {
 namespace {
 
-constexpr std::uint32_t kWidth = 160, kHeight = 120;
-constexpr float kFocal = 140.0f;
-
-// A wall seen by a pinhole camera, the depth of pixel (u, v) given by `depth` (NaN: a hole).
-template <typename Depth>
-Cloud WallOf(Depth depth) {
-  std::vector<CloudPoint> points(static_cast<std::size_t>(kWidth) * kHeight);
-  for (std::uint32_t v = 0; v < kHeight; ++v) {
-    for (std::uint32_t u = 0; u < kWidth; ++u) {
-      const float z = depth(u, v);
-      CloudPoint& p = points[static_cast<std::size_t>(v) * kWidth + u];
-      p.x = (static_cast<float>(u) - (kWidth - 1) / 2.0f) * z / kFocal;
-      p.y = (static_cast<float>(v) - (kHeight - 1) / 2.0f) * z / kFocal;
-      p.z = z;
-    }
-  }
-  return *MakeCloud(kWidth, kHeight, points);
-}
+using testing::kWidth;
 
 bool InPatch(std::uint32_t u, std::uint32_t v) { return u >= 70 && u < 90 && v >= 50 && v < 70; }
 
 // A wall at depth 1 m; the pixels of the 20x20 patch at the centre are at `patch_depth`.
 Cloud Wall(float patch_depth) {
-  return WallOf(
+  return testing::PinholeCloud(
       [&](std::uint32_t u, std::uint32_t v) { return InPatch(u, v) ? patch_depth : 1.0f; });
 }
 
@@ -96,7 +80,7 @@ TEST(VisibilityChange, OccludedPointsCountNeitherWay) {
   // 71-84 are occluded (14 x 18 = 252) and 85-88 vacated (4 x 18 = 72). Vacated are 18 % of
   // the 400 shown points, but 72 / (76 + 72) = 49 % of those that show the target's own
   // surface: moved.
-  const Cloud after = WallOf([](std::uint32_t u, std::uint32_t v) {
+  const Cloud after = testing::PinholeCloud([](std::uint32_t u, std::uint32_t v) {
     if (!InPatch(u, v)) return 1.0f;
     return u < 85 ? 0.95f : 1.05f;
   });

@@ -60,7 +60,8 @@ int RunChangeCommand(int argc, char** argv) {
   if (!frame.ok()) return Fail(frame.status().message());
   const perception::Supervoxel* target = NearestSupervoxel(*frame, Eigen::Vector3f(x, y, z));
   if (!target) return Fail("the before cloud has no supervoxel");
-  auto evidence = perception::DetectChange(*before, *after, *target, config.change);
+  auto evidence = perception::DetectChange(*before, *after, frame->segmentation.supervoxels,
+                                           target->id, config.change);
   if (!evidence.ok()) return Fail(evidence.status().message());
   PrintEvidence(*target, *evidence);
   return 0;

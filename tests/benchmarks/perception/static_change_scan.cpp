@@ -55,17 +55,19 @@ int Main(int argc, char** argv) {
       std::size_t pair_moved = 0;
       for (std::size_t s = 0; s < seg->supervoxels.size(); ++s) {
         const rp::Supervoxel& target = seg->supervoxels[s];
-        const relmap::StatusOr<rp::ChangeEvidence> e =
-            rp::DetectChange(clouds[b], clouds[a], target, config);
+        const relmap::StatusOr<rp::ChangeEvidence> e = rp::DetectChange(
+            clouds[b], clouds[a], seg->supervoxels, static_cast<std::uint32_t>(s), config);
         if (!e.ok() || !e->moved) continue;
         ++pair_moved;
         char line[256];
         std::snprintf(line, sizeof line,
                       "seq_%zu -> seq_%zu, supervoxel %zu at (%.2f, %.2f, %.2f) m: %zu points, "
-                      "%zu still there, %zu vacated, %zu occluded\n",
+                      "%zu still there, %zu vacated, %zu occluded; object of %zu supervoxels, %zu "
+                      "points, %zu still there, %zu vacated\n",
                       b + 1, a + 1, s, target.centroid.x(), target.centroid.y(),
                       target.centroid.z(), e->target_points, e->supported_points, e->vacated_points,
-                      e->occluded_points);
+                      e->occluded_points, e->object_supervoxels, e->object_points,
+                      e->object_supported_points, e->object_vacated_points);
         listed += line;
       }
       std::printf("| seq_%zu -> seq_%zu | %zu | %zu |\n", b + 1, a + 1, seg->supervoxels.size(),
