@@ -15,7 +15,7 @@
 namespace relmap::perception {
 namespace {
 
-Supervoxel At(Eigen::Vector3f centroid, Eigen::Vector3f normal) {
+Supervoxel At(const Eigen::Vector3f& centroid, const Eigen::Vector3f& normal) {
   Supervoxel s;
   s.centroid = centroid;
   s.normal = normal;
