@@ -522,7 +522,8 @@ Status PostgresSessionStore::RecordModelSummary(std::string_view session_id,
         .Execute(
             "UPDATE sessions SET model_sample_count = $2, model_components_non_moveable = $3,"
             " model_components_moveable = $4, last_used_unix_micros = $5 WHERE id = $1"
-            " AND (model_sample_count IS NULL OR model_sample_count <= $2)",
+            " AND (model_sample_count IS NULL OR model_sample_count < $2"
+            " OR (model_sample_count = $2 AND last_used_unix_micros <= $5))",
             PgParams()
                 .Text(session_id)
                 .Int8(summary.sample_count)

@@ -56,7 +56,7 @@ inline constexpr bool cmm::Paper2018Switches::*kPaper2018SwitchFields[] = {
 // What a server records of a session's model after it learns, so that a listing
 // can show a session without loading it: the components per label of the model
 // learnt from the session's first `sample_count` samples, and the session's last
-// call. The store keeps the record with the most samples.
+// call. The store keeps the record with the most samples, then the latest call.
 struct ModelSummary {
   std::int64_t sample_count = 0;
   std::int64_t components[2] = {0, 0};  // per label: 0 non-moveable, 1 moveable

@@ -57,7 +57,8 @@ class SessionStore {
   virtual Status IncrementCounters(std::string_view session_id, const SessionCounters& delta) = 0;
 
   // Keeps `summary` as the session's ModelSummary unless the one kept already
-  // covers more samples (a stale writer never undoes a newer record). Negative
+  // covers more samples, or as many with a later last call (a stale writer never
+  // undoes a newer record). Negative
   // counts, or more samples than are stored → INVALID_ARGUMENT / FAILED_PRECONDITION.
   virtual Status RecordModelSummary(std::string_view session_id, const ModelSummary& summary) = 0;
 

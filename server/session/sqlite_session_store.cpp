@@ -222,7 +222,8 @@ StatusOr<std::unique_ptr<SqliteSessionStore>> SqliteSessionStore::Open(
   auto record_model_summary = prepare(
       "UPDATE sessions SET model_sample_count = ?2, model_components_non_moveable = ?3,"
       " model_components_moveable = ?4, last_used_unix_micros = ?5"
-      " WHERE id = ?1 AND (model_sample_count IS NULL OR model_sample_count <= ?2)");
+      " WHERE id = ?1 AND (model_sample_count IS NULL OR model_sample_count < ?2"
+      " OR (model_sample_count = ?2 AND last_used_unix_micros <= ?5))");
   if (!error.ok()) return error;
 
   // Not make_unique: Connection is an aggregate, which make_unique builds with

@@ -62,9 +62,12 @@ TEST_P(SessionStoreSessions, ModelSummaryIsKeptUnlessTheKeptOneCoversMoreSamples
   EXPECT_EQ(summary.model->sample_count, 2);
   EXPECT_FALSE(summary.model_current());  // 2 of the 3 stored samples
 
-  ASSERT_TRUE(store->RecordModelSummary("a", {3, {0, 2}, At(2'000)}).ok());
-  // A writer that learnt fewer samples (a stale copy) does not undo it.
-  ASSERT_TRUE(store->RecordModelSummary("a", {2, {5, 5}, At(500)}).ok());
+  ASSERT_TRUE(store->RecordModelSummary("a", {3, {0, 2}, At(1'500)}).ok());
+  ASSERT_TRUE(store->RecordModelSummary("a", {3, {0, 2}, At(2'000)}).ok());  // a later call
+  // A writer that learnt fewer samples, or as many before the last call (a stale
+  // copy), does not undo it.
+  ASSERT_TRUE(store->RecordModelSummary("a", {2, {5, 5}, At(3'000)}).ok());
+  ASSERT_TRUE(store->RecordModelSummary("a", {3, {0, 2}, At(1'000)}).ok());
   summary = OnlyListed(*store);
   ASSERT_TRUE(summary.model_current());
   EXPECT_EQ(summary.model->components[0], 0);
