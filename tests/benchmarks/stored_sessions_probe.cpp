@@ -4,8 +4,11 @@
 // first call of one session (its restore; the server logs "restored session=...
 // in T ms" for the part inside the server).
 //   stored_sessions_probe fill ADDRESS SESSIONS SAMPLES [SEED] > sessions.txt
+//   stored_sessions_probe add ADDRESS ID TOKEN SAMPLES [SEED]
 //   stored_sessions_probe list ADDRESS
 //   stored_sessions_probe first-call ADDRESS ID TOKEN
+// `add` appends samples to one session (to leave samples after its latest snapshot, run
+// the server with --snapshot-every 0 --snapshot-after-learning-ms 0 meanwhile).
 // Samples: uniform [0,1)^48 with fair random labels (learning_cost_probe's random48),
 // sent as AddSamples batches of 250; sessions.txt gets "ID TOKEN" per session.
 // Wall-clock times of the calls as the client sees them.
@@ -39,6 +42,27 @@ double MillisecondsSince(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
+// AddSamples of `count` random samples to a session, in batches of kBatch.
+void AddRandomSamples(v1::RelevanceService::Stub& stub, const std::string& id,
+                      const std::string& token, long count, const std::string& request_prefix,
+                      Random& random) {
+  for (long first = 0; first < count; first += kBatch) {
+    v1::AddSamplesRequest add;
+    add.set_session_id(id);
+    add.set_request_id(request_prefix + std::to_string(first));
+    for (long i = first; i < std::min(count, first + kBatch); ++i) {
+      v1::LabelledFeature* sample = add.add_samples();
+      for (int d = 0; d < kDimension; ++d)
+        sample->mutable_feature()->add_values(random.UniformUnit());
+      sample->set_label(random.UniformIndex(2) == 1 ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE);
+    }
+    grpc::ClientContext context;
+    context.AddMetadata("authorization", "Bearer " + token);
+    v1::AddSamplesResponse added;
+    Check(stub.AddSamples(&context, add, &added), "AddSamples");
+  }
+}
+
 void Fill(v1::RelevanceService::Stub& stub, long sessions, long samples, std::uint64_t seed) {
   Random random(seed);
   const auto start = std::chrono::steady_clock::now();
@@ -48,22 +72,7 @@ void Fill(v1::RelevanceService::Stub& stub, long sessions, long samples, std::ui
     create.mutable_config()->set_seed(seed + static_cast<std::uint64_t>(s));
     v1::CreateSessionResponse created;
     Check(stub.CreateSession(&create_context, create, &created), "CreateSession");
-    for (long first = 0; first < samples; first += kBatch) {
-      v1::AddSamplesRequest add;
-      add.set_session_id(created.session_id());
-      add.set_request_id("fill-" + std::to_string(first));
-      for (long i = first; i < std::min(samples, first + kBatch); ++i) {
-        v1::LabelledFeature* sample = add.add_samples();
-        for (int d = 0; d < kDimension; ++d)
-          sample->mutable_feature()->add_values(random.UniformUnit());
-        sample->set_label(random.UniformIndex(2) == 1 ? v1::LABEL_MOVEABLE
-                                                      : v1::LABEL_NOT_MOVEABLE);
-      }
-      grpc::ClientContext add_context;
-      add_context.AddMetadata("authorization", "Bearer " + created.session_token());
-      v1::AddSamplesResponse added;
-      Check(stub.AddSamples(&add_context, add, &added), "AddSamples");
-    }
+    AddRandomSamples(stub, created.session_id(), created.session_token(), samples, "fill-", random);
     std::printf("%s %s\n", created.session_id().c_str(), created.session_token().c_str());
     std::fflush(stdout);
     std::fprintf(stderr, "%ld/%ld sessions of %ld samples, %.0f s\n", s + 1, sessions, samples,
@@ -115,7 +124,8 @@ void FirstCall(v1::RelevanceService::Stub& stub, const std::string& id, const st
 int main(int argc, char** argv) {
   using namespace relmap;
   constexpr const char* kUsage =
-      "usage: fill ADDRESS SESSIONS SAMPLES [SEED] | list ADDRESS | first-call ADDRESS ID TOKEN";
+      "usage: fill ADDRESS SESSIONS SAMPLES [SEED] | add ADDRESS ID TOKEN SAMPLES [SEED] |"
+      " list ADDRESS | first-call ADDRESS ID TOKEN";
   if (argc < 3) Fail(kUsage);
   const std::string command = argv[1];
   grpc::ChannelArguments arguments;
@@ -130,6 +140,12 @@ int main(int argc, char** argv) {
         argc == 6 ? static_cast<std::uint64_t>(tools::ParseNumberOrExit(kProgram, "SEED", argv[5]))
                   : 1;
     Fill(*stub, sessions, samples, seed);
+  } else if (command == "add" && (argc == 6 || argc == 7)) {
+    const auto samples = static_cast<long>(tools::ParseNumberOrExit(kProgram, "SAMPLES", argv[5]));
+    Random random(
+        argc == 7 ? static_cast<std::uint64_t>(tools::ParseNumberOrExit(kProgram, "SEED", argv[6]))
+                  : 2);
+    AddRandomSamples(*stub, argv[3], argv[4], samples, "add-", random);
   } else if (command == "list" && argc == 3) {
     List(*stub);
   } else if (command == "first-call" && argc == 5) {
