@@ -181,12 +181,20 @@ SessionRegistry::Page SessionRegistry::List(const std::string& after_id, std::si
       std::shared_lock lock(mutex_);
       if (const auto found = sessions_.find(id); found != sessions_.end()) resident = found->second;
     }
-    if (resident != nullptr) {
+    // With a store of its own the server's copy is the session; with a shared one the
+    // copy may be one another server has moved on from (a session created here and
+    // served there), and the store's summary is what every server agrees on.
+    const bool shared = store_ != nullptr && store_->shared();
+    if (resident != nullptr && !shared) {
       page.sessions.push_back(ListedOf(*resident));
       continue;
     }
     if (auto summarised = ListedOf(*it)) {
       page.sessions.push_back(std::move(summarised).value());
+      continue;
+    }
+    if (resident != nullptr) {  // a summary behind its samples: between a call's two writes
+      page.sessions.push_back(ListedOf(*resident));
       continue;
     }
     spdlog::info("listing session={}: its stored summary does not cover its {} samples; loading it",

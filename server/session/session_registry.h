@@ -85,9 +85,10 @@ class SessionRegistry {
   };
   // Up to `limit` sessions with ids after `after_id` (all when empty), ordered by id;
   // `more` tells whether further sessions follow. A session in memory is shown as it is
-  // there; one that is not, from its summary in the store (SessionSummary), without
-  // loading it. Only a session whose summary does not cover its stored samples (stored
-  // before summaries, or its last summary lost in a crash) is read from the store,
+  // there, unless the store is shared (another server may have moved on from the copy
+  // here); one that is not, or with a shared store, from its summary in the store
+  // (SessionSummary), without loading it. Only a session whose summary does not cover its stored
+  // samples (stored before summaries, or its last summary lost in a crash) is read from the store,
   // for the page only and not kept, so that listing a large store does not pull every
   // session into memory nor take sessions other servers serve.
   struct Page {
