@@ -168,6 +168,10 @@ SessionRegistry::Page SessionRegistry::List(const std::string& after_id, std::si
   std::sort(stored.begin(), stored.end(), by_id);
   SessionSummary after;
   after.record.id = after_id;
+  // With a store of its own the server's copy is the session; with a shared one the
+  // copy may be one another server has moved on from (a session created here and
+  // served there), and the store's summary is what every server agrees on.
+  const bool shared = store_ != nullptr && store_->shared();
   Page page;
   for (auto it = std::upper_bound(stored.begin(), stored.end(), after, by_id); it != stored.end();
        ++it) {
@@ -181,10 +185,6 @@ SessionRegistry::Page SessionRegistry::List(const std::string& after_id, std::si
       std::shared_lock lock(mutex_);
       if (const auto found = sessions_.find(id); found != sessions_.end()) resident = found->second;
     }
-    // With a store of its own the server's copy is the session; with a shared one the
-    // copy may be one another server has moved on from (a session created here and
-    // served there), and the store's summary is what every server agrees on.
-    const bool shared = store_ != nullptr && store_->shared();
     if (resident != nullptr && !shared) {
       page.sessions.push_back(ListedOf(*resident));
       continue;
