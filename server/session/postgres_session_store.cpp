@@ -510,6 +510,14 @@ Status PostgresSessionStore::RecordModelSummary(std::string_view session_id,
                                                 const ModelSummary& summary) {
   if (Status status = CheckModelSummary(summary); !status.ok()) return status;
   return FencedWrite(session_id, [&](PgConnection& c, int) -> Status {
+    // A summary only saves loading a session to list it, and the samples determine it:
+    // its commit need not wait for the WAL flush (a server crash may undo it, never tear
+    // it), which would double the synchronous commits of a one-sample call.
+    if (auto asynchronous =
+            c.Execute("SET LOCAL synchronous_commit = off", {}, "recording a model summary");
+        !asynchronous.ok()) {
+      return asynchronous.status();
+    }
     auto stored =
         c.Execute("SELECT COALESCE(MAX(sequence) + 1, 0) FROM samples WHERE session_id = $1",
                   PgParams().Text(session_id), "counting samples");

@@ -36,6 +36,7 @@ struct SqliteSessionStore::Connection {
   Statement increment_counters;
   Statement count_label;
   Statement record_model_summary;
+  const char* synchronous_pragma;  // the configured durability, restored after a summary
 };
 
 namespace {
@@ -166,11 +167,8 @@ StatusOr<std::unique_ptr<SqliteSessionStore>> SqliteSessionStore::Open(
                                    Quoted(journal_mode) + ")");
   }
   const bool full = options.synchronous == SqliteStoreOptions::Synchronous::kFull;
-  if (Status status =
-          Execute(db.get(), full ? "PRAGMA synchronous=FULL" : "PRAGMA synchronous=NORMAL");
-      !status.ok()) {
-    return status;
-  }
+  const char* synchronous_pragma = full ? "PRAGMA synchronous=FULL" : "PRAGMA synchronous=NORMAL";
+  if (Status status = Execute(db.get(), synchronous_pragma); !status.ok()) return status;
   if (Status status = Execute(db.get(), "PRAGMA foreign_keys=ON"); !status.ok()) return status;
   if (Status status = MigrateSchema(db.get()); !status.ok()) return status;
 
@@ -237,7 +235,7 @@ StatusOr<std::unique_ptr<SqliteSessionStore>> SqliteSessionStore::Open(
                      std::move(insert_sample).value(), std::move(select_samples).value(),
                      std::move(upsert_snapshot).value(), std::move(select_snapshot).value(),
                      std::move(increment_counters).value(), std::move(count_label).value(),
-                     std::move(record_model_summary).value()});
+                     std::move(record_model_summary).value(), synchronous_pragma});
   return std::unique_ptr<SqliteSessionStore>(new SqliteSessionStore(std::move(connection)));
 }
 
@@ -482,6 +480,15 @@ Status SqliteSessionStore::RecordModelSummary(std::string_view session_id,
   if (Status status = CheckModelSummary(summary); !status.ok()) return status;
   std::lock_guard lock(mutex_);
   Connection& c = *connection_;
+  // A summary only saves loading a session to list it, and the samples determine it: its
+  // commit need not wait for the disk (a power loss may undo it, never tear it; a later
+  // durable commit syncs it too). With synchronous=FULL, waiting would double the fsyncs
+  // of a one-sample call.
+  if (Status status = Execute(c.db.get(), "PRAGMA synchronous=OFF"); !status.ok()) return status;
+  struct RestoreDurability {
+    Connection& c;
+    ~RestoreDurability() { (void)Execute(c.db.get(), c.synchronous_pragma); }
+  } restore_durability{c};
   Transaction transaction(c.db.get());
   auto stored =
       BeginWriteCountingSamples(transaction, c.select_dimension, c.count_samples, session_id);
