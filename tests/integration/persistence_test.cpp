@@ -294,6 +294,37 @@ TEST(Persistence, ListingAfterARestartShowsStoredSessionsWithoutLoadingThem) {
   std::remove(log.c_str());
 }
 
+// The summary is recorded by every call that learns, not only at shutdown: after
+// `kill -9`, ListSessions still shows a session as it was, without loading it.
+TEST(Persistence, ListingAfterKillMinusNineShowsTheLastLearningCallWithoutLoading) {
+  const std::string dir =
+      ::testing::TempDir() + "/relmap_listing_kill_" + std::to_string(::getpid());
+  const std::string log = dir + "-server.log";
+  std::filesystem::remove_all(dir);
+  std::remove(log.c_str());
+  v1::GetSessionResponse before;
+  {
+    testing::ServerProcess server({"--data-dir", dir});
+    auto stub = RelevanceService::NewStub(server.Channel());
+    const TrainedSession trained = CreateTrainedSession(*stub, 3);
+    before = GetSession(*stub, trained.id, trained.token);
+    server.Kill();
+  }
+  testing::ServerProcess server({"--data-dir", dir}, log);
+  auto stub = RelevanceService::NewStub(server.Channel());
+  grpc::ClientContext context;
+  v1::ListSessionsResponse listed;
+  ASSERT_TRUE(stub->ListSessions(&context, {}, &listed).ok());
+  ASSERT_EQ(listed.sessions_size(), 1);
+  EXPECT_EQ(listed.sessions(0).stats().SerializeAsString(), before.stats().SerializeAsString())
+      << listed.sessions(0).stats().DebugString() << " listed; before the kill "
+      << before.stats().DebugString();
+  EXPECT_EQ(ReadFile(log).find("restored session="), std::string::npos) << ReadFile(log);
+  EXPECT_EQ(server.Stop(), 0);
+  std::filesystem::remove_all(dir);
+  std::remove(log.c_str());
+}
+
 TEST(ExportImport, AnImportedSessionPredictsBitForBitLikeTheOriginal) {
   testing::ServerProcess server;
   auto stub = RelevanceService::NewStub(server.Channel());
