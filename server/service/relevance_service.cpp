@@ -106,9 +106,9 @@ grpc::Status RelevanceService::ListSessions(grpc::ServerContext* context,
     response->set_next_page_token(page->next_page_token);
     for (const auto& session : page->sessions) {
       v1::GetSessionResponse* entry = response->add_sessions();
-      entry->set_session_id(session->id());
-      *entry->mutable_config() = ProtoFromSettings(session->settings());
-      FillStats(session->Stats(), entry->mutable_stats());
+      entry->set_session_id(session.id);
+      *entry->mutable_config() = ProtoFromSettings(session.settings);
+      FillStats(session.stats, entry->mutable_stats());
     }
     return grpc::Status::OK;
   });

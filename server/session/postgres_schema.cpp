@@ -66,6 +66,25 @@ CREATE INDEX session_owners_by_owner ON session_owners (owner);
     R"sql(
 UPDATE sessions SET cmm_variant = 'corrected_v1' WHERE cmm_variant = 'corrected';
 )sql",
+    // 2 → 3 (December 2026): what ListSessions shows of a session without loading it.
+    // The samples per label are counted here once, then by every append; the model
+    // summary (NULL until a server records one) is filled when a session is next
+    // loaded or listed.
+    R"sql(
+ALTER TABLE sessions
+  ADD COLUMN samples_non_moveable bigint NOT NULL DEFAULT 0,
+  ADD COLUMN samples_moveable bigint NOT NULL DEFAULT 0,
+  ADD COLUMN model_sample_count bigint,
+  ADD COLUMN model_components_non_moveable bigint,
+  ADD COLUMN model_components_moveable bigint,
+  ADD COLUMN last_used_unix_micros bigint;
+UPDATE sessions AS s
+  SET samples_non_moveable = n.non_moveable, samples_moveable = n.moveable
+  FROM (SELECT session_id, COUNT(*) FILTER (WHERE label = 0) AS non_moveable,
+               COUNT(*) FILTER (WHERE label = 1) AS moveable
+        FROM samples GROUP BY session_id) AS n
+  WHERE n.session_id = s.id;
+)sql",
 };
 
 // pg_advisory_xact_lock's key for migrations: "relmapSc" in ASCII.

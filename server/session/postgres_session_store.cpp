@@ -67,6 +67,42 @@ constexpr char kSessionColumns[] =
     " cmm_nearest_candidate_only, cmm_truncated_recheck, cmm_skip_likelihood_check,"
     " feature_dimension";
 
+// A session's record and counters, as LoadSession and ListSessions select them.
+constexpr char kRecordColumns[] =
+    "id, token_hash, created_unix_micros, config, cmm_variant, cmm_alpha, cmm_regularization,"
+    " cmm_seed, cmm_pseudo_density, cmm_first_sample_mean, cmm_stale_weights,"
+    " cmm_nearest_candidate_only, cmm_truncated_recheck, cmm_skip_likelihood_check,"
+    " feature_dimension, frames_computed, interactions,"
+    " COALESCE(last_used_unix_micros, created_unix_micros)";
+constexpr int kRecordColumnCount = 18;
+
+// The record in row `i` of a result that selected kRecordColumns first.
+StatusOr<SessionRecord> RecordOfRow(const PgResult& rows, int i) {
+  SessionRecord r;
+  r.id = rows.Text(i, 0);
+  r.token_hash = rows.Text(i, 1);
+  r.created_at = Timestamp(std::chrono::microseconds(rows.Int8(i, 2)));
+  r.config = rows.Text(i, 3);
+  const std::string variant = rows.Text(i, 4);
+  auto parsed = cmm::ParseVariant(variant);
+  if (!parsed.ok()) {
+    return DataLossError("session " + Quoted(r.id) + " has unknown CMM variant " + Quoted(variant));
+  }
+  // The options not stored field by field are the variant's preset.
+  r.cmm_config = cmm::CmmConfig::ForVariant(*parsed);
+  r.cmm_config.alpha = rows.Float8(i, 5);
+  r.cmm_config.regularization = rows.Float8(i, 6);
+  r.cmm_config.seed = static_cast<std::uint64_t>(rows.Int8(i, 7));
+  for (std::size_t k = 0; k < std::size(kPaper2018SwitchFields); ++k) {
+    r.cmm_config.switches.*kPaper2018SwitchFields[k] = rows.Bool(i, 8 + static_cast<int>(k));
+  }
+  r.feature_dimension = rows.Int4(i, 14);
+  r.counters.frames_computed = rows.Int8(i, 15);
+  r.counters.interactions = rows.Int8(i, 16);
+  r.last_used = Timestamp(std::chrono::microseconds(rows.Int8(i, 17)));
+  return r;
+}
+
 // "now() + the lease", with the lease in milliseconds as parameter `$n`. The
 // database's clock, not the servers': their clocks need not agree.
 std::string LeaseEnd(int n) {
@@ -244,56 +280,42 @@ Status PostgresSessionStore::CreateSession(const SessionRecord& r) {
 StatusOr<SessionRecord> PostgresSessionStore::LoadSession(std::string_view id) {
   auto connection = pool_->Take();
   if (!connection.ok()) return connection.status();
-  auto row =
-      (*connection)
-          ->ExecuteRetryingOnce(std::string("SELECT ") + kSessionColumns +
-                                    ", frames_computed, interactions FROM sessions WHERE id = $1",
-                                PgParams().Text(id), "loading a session");
+  auto row = (*connection)
+                 ->ExecuteRetryingOnce(
+                     std::string("SELECT ") + kRecordColumns + " FROM sessions WHERE id = $1",
+                     PgParams().Text(id), "loading a session");
   if (!row.ok()) return row.status();
   if (row->rows() == 0) return SessionNotFound(id);
-
-  SessionRecord r;
-  r.id = row->Text(0, 0);
-  r.token_hash = row->Text(0, 1);
-  r.created_at = Timestamp(std::chrono::microseconds(row->Int8(0, 2)));
-  r.config = row->Text(0, 3);
-  const std::string variant = row->Text(0, 4);
-  auto parsed = cmm::ParseVariant(variant);
-  if (!parsed.ok()) {
-    return DataLossError("session " + Quoted(id) + " has unknown CMM variant " + Quoted(variant));
-  }
-  // The options not stored field by field are the variant's preset.
-  r.cmm_config = cmm::CmmConfig::ForVariant(*parsed);
-  r.cmm_config.alpha = row->Float8(0, 5);
-  r.cmm_config.regularization = row->Float8(0, 6);
-  r.cmm_config.seed = static_cast<std::uint64_t>(row->Int8(0, 7));
-  for (std::size_t k = 0; k < std::size(kPaper2018SwitchFields); ++k) {
-    r.cmm_config.switches.*kPaper2018SwitchFields[k] = row->Bool(0, 8 + static_cast<int>(k));
-  }
-  r.feature_dimension = row->Int4(0, 14);
-  r.counters.frames_computed = row->Int8(0, 15);
-  r.counters.interactions = row->Int8(0, 16);
-  return r;
+  return RecordOfRow(*row, 0);
 }
 
 StatusOr<std::vector<SessionSummary>> PostgresSessionStore::ListSessions() {
   auto connection = pool_->Take();
   if (!connection.ok()) return connection.status();
-  // MAX + 1, not COUNT(*): sequence numbers have no gaps, and MAX is one step
-  // down the (session_id, sequence) key.
   auto rows =
       (*connection)
-          ->ExecuteRetryingOnce(
-              "SELECT s.id, s.created_unix_micros,"
-              " (SELECT COALESCE(MAX(sequence) + 1, 0) FROM samples WHERE session_id = s.id)"
-              " FROM sessions AS s ORDER BY s.id",
-              {}, "listing sessions");
+          ->ExecuteRetryingOnce(std::string("SELECT ") + kRecordColumns +
+                                    ", samples_non_moveable, samples_moveable, model_sample_count,"
+                                    " model_components_non_moveable, model_components_moveable"
+                                    " FROM sessions ORDER BY id",
+                                {}, "listing sessions");
   if (!rows.ok()) return rows.status();
   std::vector<SessionSummary> sessions;
   sessions.reserve(static_cast<std::size_t>(rows->rows()));
+  constexpr int k = kRecordColumnCount;
   for (int i = 0; i < rows->rows(); ++i) {
-    sessions.push_back({rows->Text(i, 0), Timestamp(std::chrono::microseconds(rows->Int8(i, 1))),
-                        rows->Int8(i, 2)});
+    auto record = RecordOfRow(*rows, i);
+    if (!record.ok()) return record.status();
+    SessionSummary summary;
+    summary.record = std::move(record).value();
+    summary.samples[0] = rows->Int8(i, k);
+    summary.samples[1] = rows->Int8(i, k + 1);
+    if (!rows->IsNull(i, k + 2)) {
+      summary.model = ModelSummary{rows->Int8(i, k + 2),
+                                   {rows->Int8(i, k + 3), rows->Int8(i, k + 4)},
+                                   summary.record.last_used};
+    }
+    sessions.push_back(std::move(summary));
   }
   return sessions;
 }
@@ -373,10 +395,16 @@ StatusOr<std::int64_t> PostgresSessionStore::AppendSample(std::string_view sessi
       return OkStatus();
     }
     sequence = existing->Int8(0, 0);
+    // The label's count in the same statement, so that the counts are the stored
+    // samples'.
     return c
         .Execute(
-            "INSERT INTO samples (session_id, sequence, request_id, features, label)"
-            " VALUES ($1, $2, $3, $4, $5)",
+            "WITH stored AS (INSERT INTO samples (session_id, sequence, request_id, features,"
+            " label) VALUES ($1, $2, $3, $4, $5) RETURNING label)"
+            " UPDATE sessions SET"
+            " samples_non_moveable = samples_non_moveable + (stored.label = 0)::int,"
+            " samples_moveable = samples_moveable + (stored.label = 1)::int"
+            " FROM stored WHERE sessions.id = $1",
             PgParams().Text(session_id).Int8(sequence).Text(request_id).Bytea(blob).Int4(label),
             "appending a sample")
         .status();
@@ -474,6 +502,43 @@ Status PostgresSessionStore::IncrementCounters(std::string_view session_id,
             " interactions = interactions + $3 WHERE id = $1",
             PgParams().Text(session_id).Int8(delta.frames_computed).Int8(delta.interactions),
             "incrementing counters")
+        .status();
+  });
+}
+
+Status PostgresSessionStore::RecordModelSummary(std::string_view session_id,
+                                                const ModelSummary& summary) {
+  if (Status status = CheckModelSummary(summary); !status.ok()) return status;
+  return FencedWrite(session_id, [&](PgConnection& c, int) -> Status {
+    // A summary only saves loading a session to list it, and the samples determine it:
+    // its commit need not wait for the WAL flush (a server crash may undo it, never tear
+    // it), which would double the synchronous commits of a one-sample call.
+    if (auto asynchronous =
+            c.Execute("SET LOCAL synchronous_commit = off", {}, "recording a model summary");
+        !asynchronous.ok()) {
+      return asynchronous.status();
+    }
+    auto stored =
+        c.Execute("SELECT COALESCE(MAX(sequence) + 1, 0) FROM samples WHERE session_id = $1",
+                  PgParams().Text(session_id), "counting samples");
+    if (!stored.ok()) return stored.status();
+    if (Status status = CheckModelSummaryAgainstSession(session_id, summary, stored->Int8(0, 0));
+        !status.ok()) {
+      return status;
+    }
+    return c
+        .Execute(
+            "UPDATE sessions SET model_sample_count = $2, model_components_non_moveable = $3,"
+            " model_components_moveable = $4, last_used_unix_micros = $5 WHERE id = $1"
+            " AND (model_sample_count IS NULL OR model_sample_count < $2"
+            " OR (model_sample_count = $2 AND last_used_unix_micros <= $5))",
+            PgParams()
+                .Text(session_id)
+                .Int8(summary.sample_count)
+                .Int8(summary.components[0])
+                .Int8(summary.components[1])
+                .Int8(summary.last_used.time_since_epoch().count()),
+            "recording a model summary")
         .status();
   });
 }

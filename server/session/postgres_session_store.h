@@ -84,6 +84,7 @@ class PostgresSessionStore final : public SessionStore {
                       std::int64_t sample_count) override;
   StatusOr<std::optional<StoredSnapshot>> LoadLatestSnapshot(std::string_view session_id) override;
   Status IncrementCounters(std::string_view session_id, const SessionCounters& delta) override;
+  Status RecordModelSummary(std::string_view session_id, const ModelSummary& summary) override;
 
   // Takes the session when it has no owner, its owner's lease has run out or its
   // owner has no connection to the database any more (a server killed with

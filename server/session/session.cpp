@@ -131,6 +131,7 @@ StatusOr<Outcome> Session::LearnOutcomeLocked(const CachedFrame& frame, std::uin
     return status;
   }
   last_used_unix_ms_ = now_unix_ms;
+  RecordSummaryLocked();
   Outcome outcome{StatsLocked(), label, evidence};
   if (!request_id.empty()) RememberLocked(request_id, outcome);
   return outcome;
@@ -224,6 +225,7 @@ StatusOr<SessionStats> Session::AddSamples(const Eigen::MatrixXd& features,
     }
   }
   last_used_unix_ms_ = now_unix_ms;
+  RecordSummaryLocked();
   Outcome outcome{StatsLocked(), -1, std::nullopt};
   if (!request_id.empty()) RememberLocked(request_id, outcome);
   return outcome.stats;
@@ -310,6 +312,11 @@ void Session::RestoreCounters(std::uint64_t frames, std::uint64_t interactions) 
   for (std::uint64_t i = 0; i < interactions; ++i) (void)random_.NextBits();
 }
 
+void Session::RestoreLastUsed(std::int64_t unix_ms) {
+  std::lock_guard lock(mutex_);
+  last_used_unix_ms_ = unix_ms;
+}
+
 const Outcome* Session::AnsweredLocked(const std::string& request_id) const {
   if (request_id.empty()) return nullptr;  // no id: never a retry
   const auto it = answered_.find(request_id);
@@ -362,6 +369,22 @@ StatusOr<SessionStats> Session::ImportState(const SessionState& state, std::int6
 SessionStats Session::Stats() const {
   std::lock_guard lock(mutex_);
   return StatsLocked();
+}
+
+void Session::RecordSummary() {
+  std::lock_guard lock(mutex_);
+  RecordSummaryLocked();
+}
+
+void Session::RecordSummaryLocked() {
+  if (store_ == nullptr) return;
+  ModelSummary summary;
+  summary.sample_count = model_.dataset().size();
+  for (int label = 0; label < 2; ++label) summary.components[label] = model_.component_count(label);
+  summary.last_used = Timestamp(std::chrono::milliseconds(last_used_unix_ms_));
+  // A failure loses nothing (the samples are the record): a listing then loads the
+  // session instead of reading its summary.
+  (void)store_->RecordModelSummary(id_, summary);
 }
 
 SessionStats Session::StatsLocked() const {

@@ -93,6 +93,8 @@ class Session {
   // `interactions` draws already made, so that the session draws as if it had never
   // stopped (each draw takes one 64-bit word of the stream).
   void RestoreCounters(std::uint64_t frames, std::uint64_t interactions);
+  // After a restart or a reload: the last call as the store recorded it.
+  void RestoreLastUsed(std::int64_t unix_ms);
   // The server's snapshot cadence and frame cache for this session.
   void set_policy(const SessionPolicy& policy);
 
@@ -129,6 +131,11 @@ class Session {
                                     const std::string& request_id, std::int64_t now_unix_ms);
 
   SessionStats Stats() const;
+  // Records in the store what a listing shows of the session while it is not in
+  // memory (ModelSummary: its components and last call). Done after every call that
+  // learns; the registry calls it when it unloads the session. Best effort: a summary
+  // that was not recorded only makes a listing load the session.
+  void RecordSummary();
 
   // The dataset and target-draw state, for ExportSession.
   SessionState ExportState() const;
@@ -140,6 +147,7 @@ class Session {
   Session(std::string id, std::string token_hash, SessionSettings settings,
           cmm::CollaborativeMixtureModels model, std::int64_t now_unix_ms, SessionStore* store);
   SessionStats StatsLocked() const;
+  void RecordSummaryLocked();
   // The cached frame `frame_id`, after checking that it has a learnable
   // supervoxel `supervoxel_id`.
   StatusOr<std::shared_ptr<const CachedFrame>> FrameForOutcomeLocked(

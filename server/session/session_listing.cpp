@@ -13,7 +13,7 @@ StatusOr<SessionPage> ListSessionPage(SessionRegistry& registry, const std::stri
   SessionRegistry::Page listed =
       registry.List(page_token, page_size == 0 ? kDefaultSessionPageSize : page_size);
   SessionPage page;
-  if (listed.more) page.next_page_token = listed.sessions.back()->id();
+  if (listed.more) page.next_page_token = listed.sessions.back().id;
   page.sessions = std::move(listed.sessions);
   return page;
 }

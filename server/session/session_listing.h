@@ -16,8 +16,8 @@ inline constexpr std::uint32_t kDefaultSessionPageSize = 100;
 inline constexpr std::uint32_t kMaxSessionPageSize = 1000;
 
 struct SessionPage {
-  std::vector<std::shared_ptr<Session>> sessions;  // ordered by id
-  std::string next_page_token;                     // empty on the last page
+  std::vector<SessionRegistry::Listed> sessions;  // ordered by id
+  std::string next_page_token;                    // empty on the last page
 };
 
 // The sessions after `page_token` (from the start when empty), `page_size` of them

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ struct SessionCounters {
   std::int64_t interactions = 0;
 };
 
+inline std::int64_t UnixMilliseconds(Timestamp t) {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(t.time_since_epoch()).count();
+}
+
 struct SessionRecord {
   std::string id;
   // The server keeps a SHA-256 hex digest of the session token, never the token.
@@ -34,6 +39,9 @@ struct SessionRecord {
   cmm::CmmConfig cmm_config;
   int feature_dimension = 0;
   SessionCounters counters;  // ignored by CreateSession: a new session starts at zero
+  // Its last call as the latest ModelSummary recorded it, else its creation; ignored
+  // by CreateSession.
+  Timestamp last_used{};
 };
 
 // Every switch of Paper2018Switches in the order the store writes them: the
@@ -45,11 +53,29 @@ inline constexpr bool cmm::Paper2018Switches::*kPaper2018SwitchFields[] = {
     &cmm::Paper2018Switches::truncated_recheck, &cmm::Paper2018Switches::skip_likelihood_check,
 };
 
-// One row of ListSessions.
-struct SessionSummary {
-  std::string id;
-  Timestamp created_at{};
+// What a server records of a session's model after it learns, so that a listing
+// can show a session without loading it: the components per label of the model
+// learnt from the session's first `sample_count` samples, and the session's last
+// call. The store keeps the record with the most samples, then the latest call.
+struct ModelSummary {
   std::int64_t sample_count = 0;
+  std::int64_t components[2] = {0, 0};  // per label: 0 non-moveable, 1 moveable
+  Timestamp last_used{};
+};
+
+// One row of ListSessions: the session's record and what the store keeps up to
+// date beside it, so that listing a session reads one row and no sample.
+struct SessionSummary {
+  SessionRecord record;  // its counters too
+  // Samples per label, counted by AppendSample in the transaction that stores them.
+  std::int64_t samples[2] = {0, 0};
+  // The latest ModelSummary recorded; nullopt when none was (a session stored by a
+  // server from before these summaries, and not loaded since).
+  std::optional<ModelSummary> model;
+
+  std::int64_t sample_count() const { return samples[0] + samples[1]; }
+  // Whether `model` describes the model of every stored sample.
+  bool model_current() const { return model.has_value() && model->sample_count == sample_count(); }
 };
 
 // A labelled sample as appended. Sequence numbers of a session count from 0 in

@@ -1,6 +1,8 @@
 // Creation, lookup and deletion of sessions.
 #include "session/session_registry.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <chrono>
 #include <mutex>
@@ -14,9 +16,9 @@ namespace relmap::session {
 
 SessionRegistry::SessionRegistry(std::size_t max_sessions, SessionStore* store,
                                  StoredSettingsDecoder decode_settings)
-    : max_sessions_(max_sessions), store_(store) {
-  if (store_ != nullptr && decode_settings) {
-    loader_ = [store, decode = std::move(decode_settings)](const std::string& id) {
+    : max_sessions_(max_sessions), store_(store), decode_settings_(std::move(decode_settings)) {
+  if (store_ != nullptr && decode_settings_) {
+    loader_ = [store, decode = decode_settings_](const std::string& id) {
       return LoadStoredSession(*store, id, decode);
     };
   }
@@ -46,6 +48,8 @@ StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings setti
     if (Status status = store_->CreateSession(record); !status.ok()) return status;
   }
   sessions_.emplace(shared->id(), shared);
+  lock.unlock();
+  shared->RecordSummary();  // so that a listing need not load it before its first sample
   return Created{std::move(shared), std::move(token)};
 }
 
@@ -129,25 +133,74 @@ std::vector<std::shared_ptr<Session>> SessionRegistry::Resident() const {
   return out;
 }
 
+SessionRegistry::Listed SessionRegistry::ListedOf(const Session& session) {
+  return {session.id(), session.settings(), session.Stats()};
+}
+
+std::optional<SessionRegistry::Listed> SessionRegistry::ListedOf(
+    const SessionSummary& summary) const {
+  if (!decode_settings_ || !summary.model_current()) return std::nullopt;
+  auto settings = StoredSessionSettings(summary.record, decode_settings_);
+  if (!settings.ok()) return std::nullopt;
+  Listed listed{summary.record.id, std::move(settings).value(), {}};
+  SessionStats& stats = listed.stats;
+  for (int label = 0; label < 2; ++label) {
+    stats.samples[label] = static_cast<std::uint64_t>(summary.samples[label]);
+    stats.components[label] = static_cast<std::uint32_t>(summary.model->components[label]);
+  }
+  stats.frames = static_cast<std::uint64_t>(summary.record.counters.frames_computed);
+  stats.created_unix_ms = UnixMilliseconds(summary.record.created_at);
+  stats.last_used_unix_ms = UnixMilliseconds(summary.model->last_used);
+  return listed;
+}
+
 SessionRegistry::Page SessionRegistry::List(const std::string& after_id, std::size_t limit) {
-  std::vector<std::string> ids;
+  std::vector<SessionSummary> stored;
   if (store_ != nullptr && loader_) {
-    if (auto stored = store_->ListSessions(); stored.ok()) {
-      for (const SessionSummary& summary : *stored) ids.push_back(summary.id);
-    }
+    if (auto listed = store_->ListSessions(); listed.ok()) stored = std::move(listed).value();
   }
-  if (ids.empty()) {
-    for (const auto& session : Resident()) ids.push_back(session->id());
+  if (stored.empty()) {
+    for (const auto& session : Resident()) stored.emplace_back().record.id = session->id();
   }
-  std::sort(ids.begin(), ids.end());
+  const auto by_id = [](const SessionSummary& a, const SessionSummary& b) {
+    return a.record.id < b.record.id;
+  };
+  std::sort(stored.begin(), stored.end(), by_id);
+  SessionSummary after;
+  after.record.id = after_id;
+  // With a store of its own the server's copy is the session; with a shared one the
+  // copy may be one another server has moved on from (a session created here and
+  // served there), and the store's summary is what every server agrees on.
+  const bool shared = store_ != nullptr && store_->shared();
   Page page;
-  for (auto it = std::upper_bound(ids.begin(), ids.end(), after_id); it != ids.end(); ++it) {
+  for (auto it = std::upper_bound(stored.begin(), stored.end(), after, by_id); it != stored.end();
+       ++it) {
     if (page.sessions.size() == limit) {
       page.more = true;
       break;
     }
+    const std::string& id = it->record.id;
+    std::shared_ptr<Session> resident;
+    {
+      std::shared_lock lock(mutex_);
+      if (const auto found = sessions_.find(id); found != sessions_.end()) resident = found->second;
+    }
+    if (resident != nullptr && !shared) {
+      page.sessions.push_back(ListedOf(*resident));
+      continue;
+    }
+    if (auto summarised = ListedOf(*it)) {
+      page.sessions.push_back(std::move(summarised).value());
+      continue;
+    }
+    if (resident != nullptr) {  // a summary behind its samples: between a call's two writes
+      page.sessions.push_back(ListedOf(*resident));
+      continue;
+    }
+    spdlog::info("listing session={}: its stored summary does not cover its {} samples; loading it",
+                 id, it->sample_count());
     // A session deleted since the ids were read is skipped.
-    if (auto session = Peek(*it); session.ok()) page.sessions.push_back(*session);
+    if (auto session = Peek(id); session.ok()) page.sessions.push_back(ListedOf(**session));
   }
   return page;
 }
@@ -155,6 +208,7 @@ SessionRegistry::Page SessionRegistry::List(const std::string& after_id, std::si
 std::vector<std::string> SessionRegistry::EvictIdle(std::int64_t cutoff_unix_ms) {
   std::vector<std::string> evicted;
   if (store_ == nullptr) return evicted;  // memory is the only copy
+  std::vector<std::shared_ptr<Session>> unloaded;
   std::unique_lock lock(mutex_);
   for (auto it = sessions_.begin(); it != sessions_.end();) {
     // use_count 1: only the registry holds it, no call is running on it.
@@ -162,16 +216,26 @@ std::vector<std::string> SessionRegistry::EvictIdle(std::int64_t cutoff_unix_ms)
     if (it->second.use_count() == 1 && last_used < cutoff_unix_ms) {
       evicted.push_back(it->first);
       if (!store_->shared()) stored_last_used_[it->first] = last_used;  // for ExpireIdle
+      unloaded.push_back(std::move(it->second));
       it = sessions_.erase(it);
     } else {
       ++it;
     }
   }
   lock.unlock();
+  Unload(unloaded);
+  unloaded.clear();
   if (!evicted.empty()) ReturnFreedMemory();
-  // Another server may take an evicted session at once rather than after its hold expires.
-  for (const std::string& id : evicted) store_->ReleaseOwnership(id);
   return evicted;
+}
+
+void SessionRegistry::Unload(const std::vector<std::shared_ptr<Session>>& sessions) {
+  for (const auto& session : sessions) {
+    // Its last call, which only memory knew, for listings while it is out.
+    session->RecordSummary();
+    // Another server may take it at once rather than after its hold expires.
+    store_->ReleaseOwnership(session->id());
+  }
 }
 
 std::vector<std::string> SessionRegistry::ExpireIdle(std::int64_t cutoff_unix_ms,
@@ -183,7 +247,7 @@ std::vector<std::string> SessionRegistry::ExpireIdle(std::int64_t cutoff_unix_ms
   if (store_ != nullptr && !store_->shared()) {
     if (auto stored = store_->ListSessions(); stored.ok()) {
       stored_ids.emplace();
-      for (const SessionSummary& summary : *stored) stored_ids->insert(summary.id);
+      for (const SessionSummary& summary : *stored) stored_ids->insert(summary.record.id);
     }
   }
   // Owned before it is deleted: a session in memory here that another server has served
@@ -227,11 +291,11 @@ std::vector<std::string> SessionRegistry::ExpireIdle(std::int64_t cutoff_unix_ms
 void SessionRegistry::ReleaseAll() {
   std::unique_lock lock(mutex_);
   if (store_ == nullptr) return;  // memory is the only copy: nothing to hand over
-  std::vector<std::string> released;
-  for (const auto& [id, session] : sessions_) released.push_back(id);
+  std::vector<std::shared_ptr<Session>> released;
+  for (auto& [id, session] : sessions_) released.push_back(std::move(session));
   sessions_.clear();
   lock.unlock();
-  for (const std::string& id : released) store_->ReleaseOwnership(id);
+  Unload(released);
 }
 
 Status SessionRegistry::Delete(const std::string& id) {

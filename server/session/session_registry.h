@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <shared_mutex>
 #include <string>
 #include <unordered_map>
@@ -76,12 +77,22 @@ class SessionRegistry {
   // that other servers can take them over at once (a server that stops). No-op
   // without a store: memory is then the only copy.
   void ReleaseAll();
-  // Up to `limit` sessions with ids after `after_id` (all when empty), ordered by id,
-  // reading evicted ones; `more` tells whether further sessions follow. Only the page
-  // is read, and what is read is not kept, so that listing a large store does not pull
-  // every session into memory nor take sessions other servers serve.
+  // A session as a listing shows it.
+  struct Listed {
+    std::string id;
+    SessionSettings settings;
+    SessionStats stats;
+  };
+  // Up to `limit` sessions with ids after `after_id` (all when empty), ordered by id;
+  // `more` tells whether further sessions follow. A session in memory is shown as it is
+  // there, unless the store is shared (another server may have moved on from the copy
+  // here); one that is not, or with a shared store, from its summary in the store
+  // (SessionSummary), without loading it. Only a session whose summary does not cover its stored
+  // samples (stored before summaries, or its last summary lost in a crash) is read from the store,
+  // for the page only and not kept, so that listing a large store does not pull every
+  // session into memory nor take sessions other servers serve.
   struct Page {
-    std::vector<std::shared_ptr<Session>> sessions;
+    std::vector<Listed> sessions;
     bool more = false;
   };
   Page List(const std::string& after_id, std::size_t limit);
@@ -93,10 +104,17 @@ class SessionRegistry {
   // (not owned, not kept); NOT_FOUND for an unknown id.
   StatusOr<std::shared_ptr<Session>> Peek(const std::string& id);
   static Status OwnershipError(const std::string& id, const Status& status);
+  static Listed ListedOf(const Session& session);
+  // The session as its stored summary shows it, or nullopt when the summary does not
+  // cover every stored sample or the settings do not decode.
+  std::optional<Listed> ListedOf(const SessionSummary& summary) const;
+  // Records the summaries of sessions leaving memory, then gives up their ownership.
+  void Unload(const std::vector<std::shared_ptr<Session>>& sessions);
 
   const std::size_t max_sessions_;
   SessionStore* const store_;
   SessionPolicy policy_;
+  StoredSettingsDecoder decode_settings_;
   Loader loader_;
   std::mutex load_mutex_;  // one load at a time, so an id is never loaded twice
   mutable std::shared_mutex mutex_;

@@ -19,6 +19,11 @@ namespace relmap::session {
 // reads it back (the service: the API's SessionConfig); the store keeps it opaque.
 using StoredSettingsDecoder = std::function<StatusOr<SessionSettings>(const SessionRecord&)>;
 
+// The settings of a stored session: its record's `config` as `decode_settings` reads
+// it, with the classifier as the store recorded it field by field.
+StatusOr<SessionSettings> StoredSessionSettings(const SessionRecord& record,
+                                                const StoredSettingsDecoder& decode_settings);
+
 // NOT_FOUND for an id the store does not hold; DATA_LOSS when its record,
 // snapshot or samples do not decode.
 StatusOr<std::shared_ptr<Session>> LoadStoredSession(SessionStore& store, const std::string& id,

@@ -27,7 +27,7 @@ class SessionStore {
   // INVALID_ARGUMENT.
   virtual Status CreateSession(const SessionRecord& record) = 0;
   virtual StatusOr<SessionRecord> LoadSession(std::string_view id) = 0;
-  // Every session, ordered by id.
+  // Every session with its summary, ordered by id.
   virtual StatusOr<std::vector<SessionSummary>> ListSessions() = 0;
   // Removes the session with its samples and snapshots.
   virtual Status DeleteSession(std::string_view id) = 0;
@@ -55,6 +55,12 @@ class SessionStore {
 
   // Adds `delta` (non-negative) to the session's counters.
   virtual Status IncrementCounters(std::string_view session_id, const SessionCounters& delta) = 0;
+
+  // Keeps `summary` as the session's ModelSummary unless the one kept already
+  // covers more samples, or as many with a later last call (a stale writer never
+  // undoes a newer record). Negative
+  // counts, or more samples than are stored → INVALID_ARGUMENT / FAILED_PRECONDITION.
+  virtual Status RecordModelSummary(std::string_view session_id, const ModelSummary& summary) = 0;
 
   // Ownership, for a store that several servers share. A server writes a session
   // only while it owns it, and the store fences every write: once another server

@@ -55,6 +55,21 @@ CREATE TABLE snapshots (
     R"sql(
 UPDATE sessions SET cmm_variant = 'corrected_v1' WHERE cmm_variant = 'corrected';
 )sql",
+    // 2 → 3 (December 2026): what ListSessions shows of a session without loading it.
+    // The samples per label are counted here once, then by every append; the model
+    // summary (NULL until a server records one) is filled when a session is next
+    // loaded or listed.
+    R"sql(
+ALTER TABLE sessions ADD COLUMN samples_non_moveable INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE sessions ADD COLUMN samples_moveable INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE sessions ADD COLUMN model_sample_count INTEGER;
+ALTER TABLE sessions ADD COLUMN model_components_non_moveable INTEGER;
+ALTER TABLE sessions ADD COLUMN model_components_moveable INTEGER;
+ALTER TABLE sessions ADD COLUMN last_used_unix_micros INTEGER;
+UPDATE sessions SET
+  samples_non_moveable = (SELECT COUNT(*) FROM samples WHERE session_id = sessions.id AND label = 0),
+  samples_moveable = (SELECT COUNT(*) FROM samples WHERE session_id = sessions.id AND label = 1);
+)sql",
 };
 
 }  // namespace

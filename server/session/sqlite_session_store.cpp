@@ -34,6 +34,9 @@ struct SqliteSessionStore::Connection {
   Statement upsert_snapshot;
   Statement select_snapshot;
   Statement increment_counters;
+  Statement count_label;
+  Statement record_model_summary;
+  const char* synchronous_pragma;  // the configured durability, restored after a summary
 };
 
 namespace {
@@ -64,6 +67,58 @@ StatusOr<std::int64_t> SampleCount(Statement& count_samples, std::string_view id
   auto row = count_samples.Step();
   if (!row.ok()) return row.status();
   return count_samples.Int64(0);
+}
+
+// A session's record and counters, as LoadSession and ListSessions select them.
+constexpr std::string_view kRecordColumns =
+    "id, token_hash, created_unix_micros, config, cmm_variant, cmm_alpha,"
+    " cmm_regularization, cmm_seed, cmm_pseudo_density, cmm_first_sample_mean,"
+    " cmm_stale_weights, cmm_nearest_candidate_only, cmm_truncated_recheck,"
+    " cmm_skip_likelihood_check, feature_dimension, frames_computed, interactions,"
+    " COALESCE(last_used_unix_micros, created_unix_micros)";
+constexpr int kRecordColumnCount = 18;
+
+// The record in the current row of a statement that selected kRecordColumns first.
+StatusOr<SessionRecord> RecordOfRow(const Statement& row) {
+  SessionRecord r;
+  r.id = row.Text(0);
+  r.token_hash = row.Text(1);
+  r.created_at = Timestamp(std::chrono::microseconds(row.Int64(2)));
+  r.config = std::string(row.BlobView(3));
+  const std::string variant = row.Text(4);
+  auto parsed = cmm::ParseVariant(variant);
+  if (!parsed.ok()) {
+    return DataLossError("session " + Quoted(r.id) + " has unknown CMM variant " + Quoted(variant));
+  }
+  // The options not stored field by field are the variant's preset.
+  r.cmm_config = cmm::CmmConfig::ForVariant(*parsed);
+  r.cmm_config.alpha = row.Double(5);
+  r.cmm_config.regularization = row.Double(6);
+  r.cmm_config.seed = static_cast<std::uint64_t>(row.Int64(7));
+  for (std::size_t k = 0; k < std::size(kPaper2018SwitchFields); ++k) {
+    r.cmm_config.switches.*kPaper2018SwitchFields[k] = row.Int64(8 + static_cast<int>(k)) != 0;
+  }
+  r.feature_dimension = static_cast<int>(row.Int64(14));
+  r.counters.frames_computed = row.Int64(15);
+  r.counters.interactions = row.Int64(16);
+  r.last_used = Timestamp(std::chrono::microseconds(row.Int64(17)));
+  return r;
+}
+
+// What SaveSnapshot and RecordModelSummary check against: the session's feature
+// dimension and stored sample count, read in the write transaction they begin.
+struct StoredShape {
+  int dimension = 0;
+  std::int64_t samples = 0;
+};
+StatusOr<StoredShape> BeginWriteCountingSamples(Transaction& transaction,
+                                                Statement& select_dimension,
+                                                Statement& count_samples, std::string_view id) {
+  auto dimension = BeginOnSession(transaction, /*write=*/true, select_dimension, id);
+  if (!dimension.ok()) return dimension.status();
+  auto samples = SampleCount(count_samples, id);
+  if (!samples.ok()) return samples.status();
+  return StoredShape{*dimension, *samples};
 }
 
 StatusOr<Statement> PrepareKeepingFirstError(sqlite3* db, std::string_view sql,
@@ -112,11 +167,8 @@ StatusOr<std::unique_ptr<SqliteSessionStore>> SqliteSessionStore::Open(
                                    Quoted(journal_mode) + ")");
   }
   const bool full = options.synchronous == SqliteStoreOptions::Synchronous::kFull;
-  if (Status status =
-          Execute(db.get(), full ? "PRAGMA synchronous=FULL" : "PRAGMA synchronous=NORMAL");
-      !status.ok()) {
-    return status;
-  }
+  const char* synchronous_pragma = full ? "PRAGMA synchronous=FULL" : "PRAGMA synchronous=NORMAL";
+  if (Status status = Execute(db.get(), synchronous_pragma); !status.ok()) return status;
   if (Status status = Execute(db.get(), "PRAGMA foreign_keys=ON"); !status.ok()) return status;
   if (Status status = MigrateSchema(db.get()); !status.ok()) return status;
 
@@ -129,17 +181,13 @@ StatusOr<std::unique_ptr<SqliteSessionStore>> SqliteSessionStore::Open(
       " cmm_stale_weights, cmm_nearest_candidate_only, cmm_truncated_recheck,"
       " cmm_skip_likelihood_check, feature_dimension)"
       " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15)");
-  auto select_session = prepare(
-      "SELECT id, token_hash, created_unix_micros, config, cmm_variant, cmm_alpha,"
-      " cmm_regularization, cmm_seed, cmm_pseudo_density, cmm_first_sample_mean,"
-      " cmm_stale_weights, cmm_nearest_candidate_only, cmm_truncated_recheck,"
-      " cmm_skip_likelihood_check, feature_dimension, frames_computed, interactions"
-      " FROM sessions WHERE id = ?1");
+  auto select_session =
+      prepare("SELECT " + std::string(kRecordColumns) + " FROM sessions WHERE id = ?1");
   auto select_dimension = prepare("SELECT feature_dimension FROM sessions WHERE id = ?1");
-  auto list_sessions = prepare(
-      "SELECT s.id, s.created_unix_micros,"
-      " (SELECT COALESCE(MAX(sequence) + 1, 0) FROM samples WHERE session_id = s.id)"
-      " FROM sessions AS s ORDER BY s.id");
+  auto list_sessions = prepare("SELECT " + std::string(kRecordColumns) +
+                               ", samples_non_moveable, samples_moveable, model_sample_count,"
+                               " model_components_non_moveable, model_components_moveable"
+                               " FROM sessions ORDER BY id");
   auto delete_samples = prepare("DELETE FROM samples WHERE session_id = ?1");
   auto delete_snapshot = prepare("DELETE FROM snapshots WHERE session_id = ?1");
   auto delete_session = prepare("DELETE FROM sessions WHERE id = ?1");
@@ -165,6 +213,15 @@ StatusOr<std::unique_ptr<SqliteSessionStore>> SqliteSessionStore::Open(
   auto increment_counters = prepare(
       "UPDATE sessions SET frames_computed = frames_computed + ?2,"
       " interactions = interactions + ?3 WHERE id = ?1");
+  // In AppendSample's transaction, so that the counts are the stored samples'.
+  auto count_label = prepare(
+      "UPDATE sessions SET samples_non_moveable = samples_non_moveable + (?2 = 0),"
+      " samples_moveable = samples_moveable + (?2 = 1) WHERE id = ?1");
+  auto record_model_summary = prepare(
+      "UPDATE sessions SET model_sample_count = ?2, model_components_non_moveable = ?3,"
+      " model_components_moveable = ?4, last_used_unix_micros = ?5"
+      " WHERE id = ?1 AND (model_sample_count IS NULL OR model_sample_count < ?2"
+      " OR (model_sample_count = ?2 AND last_used_unix_micros <= ?5))");
   if (!error.ok()) return error;
 
   // Not make_unique: Connection is an aggregate, which make_unique builds with
@@ -177,7 +234,8 @@ StatusOr<std::unique_ptr<SqliteSessionStore>> SqliteSessionStore::Open(
                      std::move(select_sample_by_request).value(), std::move(count_samples).value(),
                      std::move(insert_sample).value(), std::move(select_samples).value(),
                      std::move(upsert_snapshot).value(), std::move(select_snapshot).value(),
-                     std::move(increment_counters).value()});
+                     std::move(increment_counters).value(), std::move(count_label).value(),
+                     std::move(record_model_summary).value(), synchronous_pragma});
   return std::unique_ptr<SqliteSessionStore>(new SqliteSessionStore(std::move(connection)));
 }
 
@@ -225,29 +283,7 @@ StatusOr<SessionRecord> SqliteSessionStore::LoadSession(std::string_view id) {
   auto row = select.Step();
   if (!row.ok()) return row.status();
   if (!*row) return SessionNotFound(id);
-
-  SessionRecord r;
-  r.id = select.Text(0);
-  r.token_hash = select.Text(1);
-  r.created_at = Timestamp(std::chrono::microseconds(select.Int64(2)));
-  r.config = std::string(select.BlobView(3));
-  const std::string variant = select.Text(4);
-  auto parsed = cmm::ParseVariant(variant);
-  if (!parsed.ok()) {
-    return DataLossError("session " + Quoted(id) + " has unknown CMM variant " + Quoted(variant));
-  }
-  // The options not stored field by field are the variant's preset.
-  r.cmm_config = cmm::CmmConfig::ForVariant(*parsed);
-  r.cmm_config.alpha = select.Double(5);
-  r.cmm_config.regularization = select.Double(6);
-  r.cmm_config.seed = static_cast<std::uint64_t>(select.Int64(7));
-  for (std::size_t k = 0; k < std::size(kPaper2018SwitchFields); ++k) {
-    r.cmm_config.switches.*kPaper2018SwitchFields[k] = select.Int64(8 + static_cast<int>(k)) != 0;
-  }
-  r.feature_dimension = static_cast<int>(select.Int64(14));
-  r.counters.frames_computed = select.Int64(15);
-  r.counters.interactions = select.Int64(16);
-  return r;
+  return RecordOfRow(select);
 }
 
 StatusOr<std::vector<SessionSummary>> SqliteSessionStore::ListSessions() {
@@ -260,8 +296,18 @@ StatusOr<std::vector<SessionSummary>> SqliteSessionStore::ListSessions() {
     auto row = list.Step();
     if (!row.ok()) return row.status();
     if (!*row) break;
-    sessions.push_back(
-        {list.Text(0), Timestamp(std::chrono::microseconds(list.Int64(1))), list.Int64(2)});
+    auto record = RecordOfRow(list);
+    if (!record.ok()) return record.status();
+    SessionSummary summary;
+    summary.record = std::move(record).value();
+    constexpr int k = kRecordColumnCount;
+    summary.samples[0] = list.Int64(k);
+    summary.samples[1] = list.Int64(k + 1);
+    if (!list.IsNull(k + 2)) {
+      summary.model = ModelSummary{
+          list.Int64(k + 2), {list.Int64(k + 3), list.Int64(k + 4)}, summary.record.last_used};
+    }
+    sessions.push_back(std::move(summary));
   }
   return sessions;
 }
@@ -322,6 +368,12 @@ StatusOr<std::int64_t> SqliteSessionStore::AppendSample(std::string_view session
     return status;
   }
   if (Status status = c.insert_sample.Run(); !status.ok()) return status;
+  ResetOnExit reset_count(c.count_label);
+  if (Status status = c.count_label.Bind(session_id, static_cast<std::int64_t>(label));
+      !status.ok()) {
+    return status;
+  }
+  if (Status status = c.count_label.Run(); !status.ok()) return status;
   if (Status status = transaction.Commit(); !status.ok()) return status;
   return *sequence;
 }
@@ -364,12 +416,11 @@ Status SqliteSessionStore::SaveSnapshot(std::string_view session_id,
   std::lock_guard lock(mutex_);
   Connection& c = *connection_;
   Transaction transaction(c.db.get());
-  auto dimension = BeginOnSession(transaction, /*write=*/true, c.select_dimension, session_id);
-  if (!dimension.ok()) return dimension.status();
-  auto stored = SampleCount(c.count_samples, session_id);
+  auto stored =
+      BeginWriteCountingSamples(transaction, c.select_dimension, c.count_samples, session_id);
   if (!stored.ok()) return stored.status();
-  if (Status status =
-          CheckSnapshotAgainstSession(session_id, snapshot, sample_count, *dimension, *stored);
+  if (Status status = CheckSnapshotAgainstSession(session_id, snapshot, sample_count,
+                                                  stored->dimension, stored->samples);
       !status.ok()) {
     return status;
   }
@@ -422,6 +473,39 @@ Status SqliteSessionStore::IncrementCounters(std::string_view session_id,
   if (Status status = c.increment_counters.Run(); !status.ok()) return status;
   if (sqlite3_changes(c.db.get()) == 0) return SessionNotFound(session_id);
   return OkStatus();
+}
+
+Status SqliteSessionStore::RecordModelSummary(std::string_view session_id,
+                                              const ModelSummary& summary) {
+  if (Status status = CheckModelSummary(summary); !status.ok()) return status;
+  std::lock_guard lock(mutex_);
+  Connection& c = *connection_;
+  // A summary only saves loading a session to list it, and the samples determine it: its
+  // commit need not wait for the disk (a power loss may undo it, never tear it; a later
+  // durable commit syncs it too). With synchronous=FULL, waiting would double the fsyncs
+  // of a one-sample call.
+  if (Status status = Execute(c.db.get(), "PRAGMA synchronous=OFF"); !status.ok()) return status;
+  struct RestoreDurability {
+    Connection& c;
+    ~RestoreDurability() { (void)Execute(c.db.get(), c.synchronous_pragma); }
+  } restore_durability{c};
+  Transaction transaction(c.db.get());
+  auto stored =
+      BeginWriteCountingSamples(transaction, c.select_dimension, c.count_samples, session_id);
+  if (!stored.ok()) return stored.status();
+  if (Status status = CheckModelSummaryAgainstSession(session_id, summary, stored->samples);
+      !status.ok()) {
+    return status;
+  }
+  ResetOnExit reset(c.record_model_summary);
+  if (Status status = c.record_model_summary.Bind(
+          session_id, summary.sample_count, summary.components[0], summary.components[1],
+          static_cast<std::int64_t>(summary.last_used.time_since_epoch().count()));
+      !status.ok()) {
+    return status;
+  }
+  if (Status status = c.record_model_summary.Run(); !status.ok()) return status;
+  return transaction.Commit();
 }
 
 }  // namespace relmap::session

@@ -61,6 +61,7 @@ class SqliteSessionStore final : public SessionStore {
                       std::int64_t sample_count) override;
   StatusOr<std::optional<StoredSnapshot>> LoadLatestSnapshot(std::string_view session_id) override;
   Status IncrementCounters(std::string_view session_id, const SessionCounters& delta) override;
+  Status RecordModelSummary(std::string_view session_id, const ModelSummary& summary) override;
 
  private:
   struct Connection;  // the sqlite3 handle and its prepared statements

@@ -55,6 +55,7 @@ class Statement {
   // Steps to the end of a statement that returns no row.
   Status Run();
 
+  bool IsNull(int column) const { return sqlite3_column_type(stmt_.get(), column) == SQLITE_NULL; }
   std::int64_t Int64(int column) const { return sqlite3_column_int64(stmt_.get(), column); }
   double Double(int column) const { return sqlite3_column_double(stmt_.get(), column); }
   std::string Text(int column) const;

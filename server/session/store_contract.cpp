@@ -86,6 +86,21 @@ Status CheckCounterDelta(const SessionCounters& delta) {
   return InvalidArgumentError("counters only grow; got a negative increment");
 }
 
+Status CheckModelSummary(const ModelSummary& summary) {
+  if (summary.sample_count >= 0 && summary.components[0] >= 0 && summary.components[1] >= 0) {
+    return OkStatus();
+  }
+  return InvalidArgumentError("a model summary counts samples and components from 0");
+}
+
+Status CheckModelSummaryAgainstSession(std::string_view session_id, const ModelSummary& summary,
+                                       std::int64_t stored_samples) {
+  if (summary.sample_count <= stored_samples) return OkStatus();
+  return FailedPreconditionError("model summary claims " + std::to_string(summary.sample_count) +
+                                 " samples; session " + Quoted(session_id) + " stores " +
+                                 std::to_string(stored_samples));
+}
+
 std::string EncodeFeatures(std::span<const double> features) {
   std::string blob;
   blob.reserve(features.size() * 8);

@@ -45,6 +45,11 @@ Status SnapshotDecodeError(std::string_view session_id, const Status& status);
 // IncrementCounters' check: counters only grow.
 Status CheckCounterDelta(const SessionCounters& delta);
 
+// RecordModelSummary's checks: counts from 0, then no more samples than are stored.
+Status CheckModelSummary(const ModelSummary& summary);
+Status CheckModelSummaryAgainstSession(std::string_view session_id, const ModelSummary& summary,
+                                       std::int64_t stored_samples);
+
 // Little-endian IEEE doubles, 8 bytes each: exact, and independent of the host.
 std::string EncodeFeatures(std::span<const double> features);
 // The features of sample `sequence`, or DATA_LOSS if the blob does not hold

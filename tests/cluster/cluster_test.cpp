@@ -1,7 +1,7 @@
 // Two relmap-servers sharing one PostgreSQL behind nginx (deploy/nginx), all real
 // processes on loopback: sessions stay on one server, a server killed with SIGKILL
 // loses no acknowledged sample (the other takes its sessions over), and when it
-// comes back the cluster goes on.
+// comes back the cluster goes on; either server lists every session.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -75,14 +75,15 @@ class ClusterServer {
     }
     return calls;
   }
-  bool Logged(const std::string& text) const {
+  bool Logged(const std::string& text) const { return LinesLogging(text) > 0; }
+  // Lines of every log this server has written that contain `text`.
+  int LinesLogging(const std::string& text) const {
+    int lines = 0;
     for (int i = 0; i < starts_; ++i) {
       std::ifstream in(log_path_ + "." + std::to_string(i));
-      std::stringstream all;
-      all << in.rdbuf();
-      if (all.str().find(text) != std::string::npos) return true;
+      for (std::string line; std::getline(in, line);) lines += line.find(text) != std::string::npos;
     }
-    return false;
+    return lines;
   }
 
  private:
@@ -276,6 +277,55 @@ TEST_F(Cluster, TheServerNotOwningASessionSaysWhoDoes) {
       << refused.error_message();
   EXPECT_FALSE(metadata["leaseExpiresAt"].empty());
   EXPECT_TRUE(client::PushbackOf(context).has_value());
+}
+
+// Either server lists every session of the shared store as its owner shows it, from
+// the summaries the store keeps: without loading a session (a load logs "restored
+// session=") nor taking it, and not as the stale copy a server keeps of a session it
+// created and handed over.
+TEST_F(Cluster, EitherServerListsEverySessionAsItsOwnerShowsIt) {
+  std::vector<ExploredSession> sessions(4);
+  for (ExploredSession& session : sessions) {
+    ASSERT_TRUE(client_->CreateSession({}, &session.handle).ok());
+  }
+  Cycles(sessions, 2);
+  ASSERT_FALSE(HasFatalFailure());
+  std::map<std::string, std::string> owners_stats;
+  for (const ExploredSession& session : sessions) {
+    v1::GetSessionResponse got;
+    ASSERT_TRUE(client_->GetSession(session.handle, &got).ok());
+    EXPECT_GT(got.stats().moveable_samples() + got.stats().non_moveable_samples(), 0u);
+    owners_stats[session.handle.id] = got.stats().SerializeAsString();
+  }
+  // A session created on one server and served by the other is loaded by its owner on
+  // its first call there: those loads are counted before the listings.
+  const int loads[2] = {servers_[0]->LinesLogging("restored session="),
+                        servers_[1]->LinesLogging("restored session=")};
+  for (const auto& server : servers_) {
+    auto stub = v1::RelevanceService::NewStub(
+        grpc::CreateChannel(server->Address(), grpc::InsecureChannelCredentials()));
+    grpc::ClientContext context;
+    v1::ListSessionsResponse listed;
+    ASSERT_TRUE(stub->ListSessions(&context, {}, &listed).ok());
+    ASSERT_EQ(listed.sessions_size(), static_cast<int>(sessions.size())) << server->Address();
+    for (const v1::GetSessionResponse& entry : listed.sessions()) {
+      EXPECT_EQ(entry.stats().SerializeAsString(), owners_stats[entry.session_id()])
+          << server->Address() << " lists " << entry.session_id() << " as "
+          << entry.stats().DebugString();
+    }
+  }
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(servers_[i]->LinesLogging("restored session="), loads[i]) << "server " << i;
+  }
+  // Neither took a session by listing it: each session's calls stay on its owner.
+  std::vector<int> owners;
+  for (const ExploredSession& session : sessions) owners.push_back(OwnerOf(session));
+  Cycles(sessions, 1);
+  ASSERT_FALSE(HasFatalFailure());
+  for (std::size_t i = 0; i < sessions.size(); ++i) {
+    EXPECT_EQ(OwnerOf(sessions[i]), owners[i]) << sessions[i].handle.id;
+    EXPECT_EQ(sessions[i].frames_lost, 0) << sessions[i].handle.id;
+  }
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -218,6 +220,109 @@ TEST(Persistence, SessionsIdleLongerThanTheExpiryAreDeletedFromMemoryAndStore) {
   ASSERT_TRUE(stored.ok());
   EXPECT_EQ(stored->size(), 1u);  // the busy one
   std::filesystem::remove_all(dir);
+}
+
+v1::GetSessionResponse GetSession(RelevanceService::Stub& stub, const std::string& id,
+                                  const std::string& token) {
+  grpc::ClientContext context;
+  Authorise(context, token);
+  v1::GetSessionRequest request;
+  request.set_session_id(id);
+  v1::GetSessionResponse response;
+  EXPECT_TRUE(stub.GetSession(&context, request, &response).ok());
+  return response;
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// After a restart, ListSessions answers from the summaries the store keeps: every
+// session as GetSession showed it before the restart, and none loaded for it (the
+// server logs each load of a stored session, "restored session=<id>").
+TEST(Persistence, ListingAfterARestartShowsStoredSessionsWithoutLoadingThem) {
+  const std::string dir = ::testing::TempDir() + "/relmap_listing_" + std::to_string(::getpid());
+  const std::string log = dir + "-server.log";
+  std::filesystem::remove_all(dir);
+  std::remove(log.c_str());
+  std::map<std::string, v1::GetSessionResponse> before;
+  std::map<std::string, std::string> tokens;
+  {
+    testing::ServerProcess server({"--data-dir", dir});
+    auto stub = RelevanceService::NewStub(server.Channel());
+    for (std::uint64_t seed = 0; seed < 3; ++seed) {
+      const TrainedSession trained = CreateTrainedSession(*stub, seed);
+      Classify(*stub, trained.id, trained.token);  // a last call that learns nothing
+      tokens[trained.id] = trained.token;
+    }
+    grpc::ClientContext context;
+    v1::CreateSessionRequest create;
+    create.mutable_config()->set_feature_dimension(2);
+    v1::CreateSessionResponse empty;
+    ASSERT_TRUE(stub->CreateSession(&context, create, &empty).ok());
+    tokens[empty.session_id()] = empty.session_token();
+    for (const auto& [id, token] : tokens) before[id] = GetSession(*stub, id, token);
+    EXPECT_EQ(server.Stop(), 0);
+  }
+
+  testing::ServerProcess server({"--data-dir", dir}, log);
+  auto stub = RelevanceService::NewStub(server.Channel());
+  grpc::ClientContext context;
+  v1::ListSessionsRequest request;
+  request.set_page_size(1000);
+  v1::ListSessionsResponse listed;
+  ASSERT_TRUE(stub->ListSessions(&context, request, &listed).ok());
+  ASSERT_EQ(listed.sessions_size(), 4);
+  for (const v1::GetSessionResponse& session : listed.sessions()) {
+    const auto it = before.find(session.session_id());
+    ASSERT_NE(it, before.end()) << session.session_id();
+    EXPECT_EQ(session.stats().SerializeAsString(), it->second.stats().SerializeAsString())
+        << session.stats().DebugString() << " listed; before the restart "
+        << it->second.stats().DebugString();
+    EXPECT_EQ(session.config().SerializeAsString(), it->second.config().SerializeAsString());
+  }
+  EXPECT_EQ(ReadFile(log).find("restored session="), std::string::npos) << ReadFile(log);
+
+  // A call loads the session, and the log says so.
+  const std::string& id = listed.sessions(1).session_id();
+  const v1::GetSessionResponse loaded = GetSession(*stub, id, tokens[id]);
+  EXPECT_EQ(loaded.stats().SerializeAsString(), listed.sessions(1).stats().SerializeAsString());
+  EXPECT_NE(ReadFile(log).find("restored session=" + id), std::string::npos) << ReadFile(log);
+  EXPECT_EQ(server.Stop(), 0);
+  std::filesystem::remove_all(dir);
+  std::remove(log.c_str());
+}
+
+// The summary is recorded by every call that learns, not only at shutdown: after
+// `kill -9`, ListSessions still shows a session as it was, without loading it.
+TEST(Persistence, ListingAfterKillMinusNineShowsTheLastLearningCallWithoutLoading) {
+  const std::string dir =
+      ::testing::TempDir() + "/relmap_listing_kill_" + std::to_string(::getpid());
+  const std::string log = dir + "-server.log";
+  std::filesystem::remove_all(dir);
+  std::remove(log.c_str());
+  v1::GetSessionResponse before;
+  {
+    testing::ServerProcess server({"--data-dir", dir});
+    auto stub = RelevanceService::NewStub(server.Channel());
+    const TrainedSession trained = CreateTrainedSession(*stub, 3);
+    before = GetSession(*stub, trained.id, trained.token);
+    server.Kill();
+  }
+  testing::ServerProcess server({"--data-dir", dir}, log);
+  auto stub = RelevanceService::NewStub(server.Channel());
+  grpc::ClientContext context;
+  v1::ListSessionsResponse listed;
+  ASSERT_TRUE(stub->ListSessions(&context, {}, &listed).ok());
+  ASSERT_EQ(listed.sessions_size(), 1);
+  EXPECT_EQ(listed.sessions(0).stats().SerializeAsString(), before.stats().SerializeAsString())
+      << listed.sessions(0).stats().DebugString() << " listed; before the kill "
+      << before.stats().DebugString();
+  EXPECT_EQ(ReadFile(log).find("restored session="), std::string::npos) << ReadFile(log);
+  EXPECT_EQ(server.Stop(), 0);
+  std::filesystem::remove_all(dir);
+  std::remove(log.c_str());
 }
 
 TEST(ExportImport, AnImportedSessionPredictsBitForBitLikeTheOriginal) {

@@ -2,6 +2,7 @@
 #include "integration/server_process.h"
 
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -17,7 +18,8 @@
 
 namespace relmap::testing {
 
-ServerProcess::ServerProcess(std::vector<std::string> extra_arguments) {
+ServerProcess::ServerProcess(std::vector<std::string> extra_arguments,
+                             const std::string& log_path) {
   port_file_ = ::testing::TempDir() + "/relmap_server_port_" + std::to_string(::getpid()) + "_" +
                std::to_string(reinterpret_cast<std::uintptr_t>(this));
   std::remove(port_file_.c_str());
@@ -27,6 +29,13 @@ ServerProcess::ServerProcess(std::vector<std::string> extra_arguments) {
   const std::vector<char*> argv = ExecArgv(arguments);
   pid_ = ::fork();
   if (pid_ == 0) {
+    if (!log_path.empty()) {
+      const int log = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+      if (log < 0) ::_exit(126);
+      ::dup2(log, STDOUT_FILENO);
+      ::dup2(log, STDERR_FILENO);
+      ::close(log);
+    }
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }

@@ -14,8 +14,10 @@ namespace relmap::testing {
 class ServerProcess {
  public:
   // Starts the server binary with `extra_arguments`; fails the test if it does
-  // not bind a port within 10 s.
-  explicit ServerProcess(std::vector<std::string> extra_arguments = {});
+  // not bind a port within 10 s. With a `log_path`, the server's stdout and stderr
+  // (its log) go to that file.
+  explicit ServerProcess(std::vector<std::string> extra_arguments = {},
+                         const std::string& log_path = {});
   ~ServerProcess();
 
   std::string address() const { return "127.0.0.1:" + std::to_string(port_); }

@@ -28,6 +28,7 @@ class SharedStore : public SessionStore {
   MOCK_METHOD(StatusOr<std::optional<StoredSnapshot>>, LoadLatestSnapshot, (std::string_view),
               (override));
   MOCK_METHOD(Status, IncrementCounters, (std::string_view, const SessionCounters&), (override));
+  MOCK_METHOD(Status, RecordModelSummary, (std::string_view, const ModelSummary&), (override));
   MOCK_METHOD(StatusOr<Ownership>, AcquireOwnership, (std::string_view), (override));
   MOCK_METHOD(void, ReleaseOwnership, (std::string_view), (override));
 };
@@ -140,8 +141,8 @@ TEST_F(RegistryOwnership, ReleaseAllGivesUpEverySessionInMemory) {
 
 TEST_F(RegistryOwnership, ListingReadsStoredSessionsWithoutTakingOrKeepingThem) {
   std::vector<SessionSummary> stored(2);
-  stored[0].id = "a";
-  stored[1].id = "b";
+  stored[0].record.id = "a";
+  stored[1].record.id = "b";
   EXPECT_CALL(store_, ListSessions()).WillOnce(Return(stored));
   EXPECT_CALL(store_, AcquireOwnership(_)).Times(0);
   const SessionRegistry::Page page = registry_.List("", 10);

@@ -14,6 +14,7 @@
 #include "session/credentials.h"
 #include "session/feature_settings.h"
 #include "session/session_listing.h"
+#include "session/session_restore.h"
 #include "session/sqlite_session_store.h"
 #include "session/store_test_support.h"
 
@@ -126,7 +127,7 @@ TEST(SessionListing, PagesWalkEverySessionOnceInIdOrder) {
   do {
     auto page = ListSessionPage(registry, token, 2);
     ASSERT_TRUE(page.ok());
-    for (const auto& session : page->sessions) listed.push_back(session->id());
+    for (const auto& session : page->sessions) listed.push_back(session.id);
     token = page->next_page_token;
     ++pages;
   } while (!token.empty());
@@ -232,6 +233,133 @@ TEST_F(StoredRegistry, ADeletedSessionIsGoneFromTheStoreToo) {
   ASSERT_TRUE(registry_->Delete(id).ok());
   EXPECT_EQ(registry_->Find(id).status().code(), StatusCode::kNotFound);
   EXPECT_EQ(store_->LoadSession(id).status().code(), StatusCode::kNotFound);
+}
+
+// The registry of a server restarted on the same store, whose loads are counted.
+class RestartedRegistry {
+ public:
+  explicit RestartedRegistry(SessionStore& store)
+      : registry_(8, &store, [](const SessionRecord&) -> StatusOr<SessionSettings> {
+          return FeatureSettings();
+        }) {
+    registry_.set_loader([this, &store](const std::string& id) {
+      ++loads_;
+      return LoadStoredSession(store, id, [](const SessionRecord&) -> StatusOr<SessionSettings> {
+        return FeatureSettings();
+      });
+    });
+  }
+  SessionRegistry& operator*() { return registry_; }
+  SessionRegistry* operator->() { return &registry_; }
+  int loads() const { return loads_; }
+
+ private:
+  SessionRegistry registry_;
+  int loads_ = 0;
+};
+
+void ExpectSameStats(const SessionStats& listed, const SessionStats& expected) {
+  for (int label = 0; label < 2; ++label) {
+    EXPECT_EQ(listed.samples[label], expected.samples[label]) << "label " << label;
+    EXPECT_EQ(listed.components[label], expected.components[label]) << "label " << label;
+  }
+  EXPECT_EQ(listed.frames, expected.frames);
+  EXPECT_EQ(listed.created_unix_ms, expected.created_unix_ms);
+  EXPECT_EQ(listed.last_used_unix_ms, expected.last_used_unix_ms);
+}
+
+// Samples that make two components of label 1 (far apart) and one of label 0.
+Eigen::MatrixXd SpreadSamples() {
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(6, kDimension);
+  x.row(1).setConstant(0.01);
+  x.row(2).setConstant(50.0);
+  x.row(3).setConstant(50.01);
+  x.row(4).setConstant(-3.0);
+  x.row(5).setConstant(-3.01);
+  return x;
+}
+const std::vector<int> kSpreadLabels = {1, 1, 1, 1, 0, 0};
+
+TEST_F(StoredRegistry, AStoredSessionIsListedFromItsSummaryWithoutBeingLoaded) {
+  const std::string id = CreateOne(*registry_);
+  auto session = registry_->Find(id);
+  ASSERT_TRUE(session.ok());
+  ASSERT_TRUE((*session)->AddSamples(SpreadSamples(), kSpreadLabels, "r1", 10).ok());
+  const SessionStats before = (*session)->Stats();
+  session->reset();
+  registry_->ReleaseAll();  // as a server that stops
+
+  RestartedRegistry restarted(*store_);
+  const SessionRegistry::Page page = restarted->List("", 10);
+  ASSERT_EQ(page.sessions.size(), 1u);
+  EXPECT_EQ(page.sessions[0].id, id);
+  EXPECT_EQ(page.sessions[0].settings.feature_dimension, kDimension);
+  ExpectSameStats(page.sessions[0].stats, before);
+  EXPECT_EQ(before.samples[0], 2u);
+  EXPECT_EQ(before.samples[1], 4u);
+  EXPECT_EQ(before.last_used_unix_ms, 10);
+  EXPECT_EQ(restarted.loads(), 0);
+  EXPECT_TRUE(restarted->Resident().empty());
+}
+
+TEST_F(StoredRegistry, AnEvictedSessionIsListedWithItsLastCall) {
+  const std::string id = CreateOne(*registry_);
+  auto session = registry_->Find(id);
+  ASSERT_TRUE(session.ok());
+  ASSERT_TRUE((*session)->AddSamples(SpreadSamples(), kSpreadLabels, "r1", 10).ok());
+  ASSERT_TRUE((*session)->ClassifyFeatures(SpreadSamples(), 30).ok());  // learns nothing
+  session->reset();
+  ASSERT_EQ(registry_->EvictIdle(40), std::vector<std::string>{id});
+
+  RestartedRegistry restarted(*store_);
+  const SessionRegistry::Page page = restarted->List("", 10);
+  ASSERT_EQ(page.sessions.size(), 1u);
+  EXPECT_EQ(page.sessions[0].stats.last_used_unix_ms, 30);
+  EXPECT_EQ(restarted.loads(), 0);
+}
+
+TEST_F(StoredRegistry, AnImportedSessionIsListedWithItsSamplesWithoutBeingLoaded) {
+  SessionState state;
+  state.features = SpreadSamples();
+  state.labels = kSpreadLabels;
+  auto imported = registry_->Import(FeatureSettings(), "config", state, 5);
+  ASSERT_TRUE(imported.ok()) << imported.status().message();
+  const SessionStats before = imported->session->Stats();
+  imported->session.reset();
+  registry_->ReleaseAll();
+
+  RestartedRegistry restarted(*store_);
+  const SessionRegistry::Page page = restarted->List("", 10);
+  ASSERT_EQ(page.sessions.size(), 1u);
+  ExpectSameStats(page.sessions[0].stats, before);
+  EXPECT_EQ(restarted.loads(), 0);
+}
+
+// A sample stored after the last summary (a crash between the two): the listing loads
+// the session once, which records its summary, and reads the summary from then on.
+TEST_F(StoredRegistry, ASessionWhoseSummaryMissesASampleIsLoadedOnceToBeListed) {
+  const std::string id = CreateOne(*registry_);
+  auto session = registry_->Find(id);
+  ASSERT_TRUE(session.ok());
+  ASSERT_TRUE((*session)->AddSamples(SpreadSamples(), kSpreadLabels, "r1", 10).ok());
+  session->reset();
+  registry_->ReleaseAll();
+  const std::vector<double> late(kDimension, 99.0);
+  ASSERT_TRUE(store_->AppendSample(id, "late", late, 1).ok());
+
+  RestartedRegistry restarted(*store_);
+  const SessionRegistry::Page first = restarted->List("", 10);
+  ASSERT_EQ(first.sessions.size(), 1u);
+  EXPECT_EQ(restarted.loads(), 1);
+  EXPECT_TRUE(restarted->Resident().empty());  // read for the page, not kept
+  const SessionRegistry::Page second = restarted->List("", 10);
+  ASSERT_EQ(second.sessions.size(), 1u);
+  EXPECT_EQ(restarted.loads(), 1);
+  auto loaded = restarted->Find(id);
+  ASSERT_TRUE(loaded.ok());
+  EXPECT_EQ((*loaded)->Stats().samples[1], 5u);
+  ExpectSameStats(first.sessions[0].stats, (*loaded)->Stats());
+  ExpectSameStats(second.sessions[0].stats, (*loaded)->Stats());
 }
 
 // Times are the clock the registry is given (unix ms): sessions created at 0, used at 10.

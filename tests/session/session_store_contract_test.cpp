@@ -88,11 +88,11 @@ TEST_P(SessionStoreSessions, ListGivesIdsCreationTimesAndSampleCountsInIdOrder) 
   auto list = store->ListSessions();
   ASSERT_TRUE(list.ok()) << list.status().message();
   ASSERT_EQ(list->size(), 2u);
-  EXPECT_EQ((*list)[0].id, "a");
-  EXPECT_EQ((*list)[0].sample_count, 0);
-  EXPECT_EQ((*list)[1].id, "b");
-  EXPECT_EQ((*list)[1].created_at, b.created_at);
-  EXPECT_EQ((*list)[1].sample_count, 2);
+  EXPECT_EQ((*list)[0].record.id, "a");
+  EXPECT_EQ((*list)[0].sample_count(), 0);
+  EXPECT_EQ((*list)[1].record.id, "b");
+  EXPECT_EQ((*list)[1].record.created_at, b.created_at);
+  EXPECT_EQ((*list)[1].sample_count(), 2);
 }
 
 TEST_P(SessionStoreSessions, DeleteRemovesTheSessionWithItsSamplesAndSnapshot) {

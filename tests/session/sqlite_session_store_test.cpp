@@ -160,6 +160,7 @@ TEST_F(SqliteSessionStoreFile, SessionsStoredAsCorrectedBeforeVersionTwoLoadAsCo
     ASSERT_TRUE((*store)->CreateSession(testing::MakeRecord("paper")).ok());
   }
   // What a schema-1 server left: "corrected" meant today's corrected_v1.
+  ASSERT_TRUE(testing::TamperSqlite(path_, testing::kSqliteDropSummaryColumns));
   ASSERT_TRUE(testing::TamperSqlite(path_, "UPDATE schema_version SET version = 1"));
   ASSERT_TRUE(testing::TamperSqlite(
       path_, "UPDATE sessions SET cmm_variant = 'corrected' WHERE id = 'old'"));

@@ -33,6 +33,20 @@ inline SessionRecord MakeRecord(const std::string& id, int dimension = 3) {
   return record;
 }
 
+// Takes the sessions table back to before summaries (schema version 3), as a server
+// of version 2 or older left it; the schema version is for the caller to set.
+inline constexpr const char* kSqliteDropSummaryColumns =
+    "ALTER TABLE sessions DROP COLUMN samples_non_moveable;"
+    "ALTER TABLE sessions DROP COLUMN samples_moveable;"
+    "ALTER TABLE sessions DROP COLUMN model_sample_count;"
+    "ALTER TABLE sessions DROP COLUMN model_components_non_moveable;"
+    "ALTER TABLE sessions DROP COLUMN model_components_moveable;"
+    "ALTER TABLE sessions DROP COLUMN last_used_unix_micros;";
+inline constexpr const char* kPostgresDropSummaryColumns =
+    "ALTER TABLE sessions DROP COLUMN samples_non_moveable, DROP COLUMN samples_moveable,"
+    " DROP COLUMN model_sample_count, DROP COLUMN model_components_non_moveable,"
+    " DROP COLUMN model_components_moveable, DROP COLUMN last_used_unix_micros;";
+
 // Runs one SQL statement on the SQLite file at `path` behind the store's back, as
 // a damaged disk or a future server version would leave it. False (with a test
 // failure) if it did not run.
