@@ -48,7 +48,10 @@ esac
 
 start=$(date +%s)
 # -g1: line tables for the reports' stacks at a fraction of full debug info's build time.
+# ccache: the shared cache (base_dir /work) lets a second worktree's sanitized build, or a
+# re-run after a change, reuse the objects of the first instead of a half-hour rebuild.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache \
   -DCMAKE_CXX_FLAGS="$flags -g1" -DCMAKE_C_FLAGS="$flags -g1" \
   -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags"
 # Two jobs: a sanitized PCL translation unit takes over 1 GB of compiler memory.
