@@ -11,6 +11,7 @@ mode=${1:-address}
 shift || true
 ./scripts/install-deps.sh
 
+targets=()
 case "$mode" in
   address)
     build=build-asan
@@ -35,9 +36,16 @@ case "$mode" in
   thread)
     build=build-tsan
     flags="-fsanitize=thread -fno-omit-frame-pointer"
-    # The tests that run threads against each other: the session layer's concurrency
-    # tests and every test of the real server process (its gRPC worker threads).
-    selection=(-L "service|integration|cluster|session")
+    # The tests that run threads against each other: the programs labelled "threads"
+    # (sessions and stores, the client against in-process servers, the robot's sources),
+    # the PostgreSQL store and every test of the real server process (its gRPC worker
+    # threads). Only their programs are built: the unit tests' forty-odd others would
+    # double the build for nothing TSan looks at.
+    selection=(-L "threads|service|integration|cluster|postgres")
+    targets=(relmap-server relmap relmap-robot relmap-load session_test session_store_test
+      postgres_session_store_test client_test robot_adapter_test service_in_process_test
+      server_integration_test client_integration_test cluster_test robot_end_to_end_test
+      sim_runner_end_to_end_test)
     export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
     ;;
   *)
@@ -55,7 +63,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_CXX_FLAGS="$flags -g1" -DCMAKE_C_FLAGS="$flags -g1" \
   -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags"
 # Two jobs: a sanitized PCL translation unit takes over 1 GB of compiler memory.
-cmake --build "$build" -j 2
+cmake --build "$build" -j 2 ${targets:+--target "${targets[@]}"}
 built=$(date +%s)
 status=0
 ctest --test-dir "$build" --output-on-failure -j 2 "${selection[@]}" "$@" || status=$?
