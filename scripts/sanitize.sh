@@ -46,7 +46,8 @@ case "$mode" in
       postgres_session_store_test client_test robot_adapter_test service_in_process_test
       server_integration_test client_integration_test cluster_test robot_end_to_end_test
       sim_runner_end_to_end_test)
-    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
+    # Exported before the build: gtest_discover_tests runs each program at build time.
+    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/scripts/sanitizers/tsan.supp"
     ;;
   *)
     echo "usage: scripts/sanitize.sh address|thread [ctest arguments]" >&2
