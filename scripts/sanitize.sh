@@ -41,7 +41,8 @@ case "$mode" in
     # the PostgreSQL store and every test of the real server process (its gRPC worker
     # threads). Only their programs are built: the unit tests' forty-odd others would
     # double the build for nothing TSan looks at.
-    selection=(-L "threads|service|integration|cluster|postgres")
+    # Not the ROS tests: the ROS bridge is not among the programs built here.
+    selection=(-L "threads|service|integration|cluster|postgres" -LE ros)
     targets=(relmap-server relmap relmap-robot relmap-load session_test session_store_test
       postgres_session_store_test client_test robot_adapter_test service_in_process_test
       server_integration_test client_integration_test cluster_test robot_end_to_end_test
