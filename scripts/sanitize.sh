@@ -11,6 +11,7 @@ mode=${1:-address}
 shift || true
 ./scripts/install-deps.sh
 
+targets=()
 case "$mode" in
   address)
     build=build-asan
@@ -35,10 +36,19 @@ case "$mode" in
   thread)
     build=build-tsan
     flags="-fsanitize=thread -fno-omit-frame-pointer"
-    # The tests that run threads against each other: the session layer's concurrency
-    # tests and every test of the real server process (its gRPC worker threads).
-    selection=(-L "service|integration|cluster|session")
-    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
+    # The tests that run threads against each other: the programs labelled "threads"
+    # (sessions and stores, the client against in-process servers, the robot's sources),
+    # the PostgreSQL store and every test of the real server process (its gRPC worker
+    # threads). Only their programs are built: the unit tests' forty-odd others would
+    # double the build for nothing TSan looks at.
+    # Not the ROS tests: the ROS bridge is not among the programs built here.
+    selection=(-L "threads|service|integration|cluster|postgres" -LE ros)
+    targets=(relmap-server relmap relmap-robot relmap-load session_test session_store_test
+      postgres_session_store_test client_test robot_adapter_test service_in_process_test
+      server_integration_test client_integration_test cluster_test robot_end_to_end_test
+      sim_runner_end_to_end_test)
+    # Exported before the build: gtest_discover_tests runs each program at build time.
+    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/scripts/sanitizers/tsan.supp"
     ;;
   *)
     echo "usage: scripts/sanitize.sh address|thread [ctest arguments]" >&2
@@ -48,11 +58,14 @@ esac
 
 start=$(date +%s)
 # -g1: line tables for the reports' stacks at a fraction of full debug info's build time.
+# ccache: the shared cache (base_dir /work) lets a second worktree's sanitized build, or a
+# re-run after a change, reuse the objects of the first instead of a half-hour rebuild.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache \
   -DCMAKE_CXX_FLAGS="$flags -g1" -DCMAKE_C_FLAGS="$flags -g1" \
   -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags"
 # Two jobs: a sanitized PCL translation unit takes over 1 GB of compiler memory.
-cmake --build "$build" -j 2
+cmake --build "$build" -j 2 ${targets:+--target "${targets[@]}"}
 built=$(date +%s)
 status=0
 ctest --test-dir "$build" --output-on-failure -j 2 "${selection[@]}" "$@" || status=$?

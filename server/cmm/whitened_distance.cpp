@@ -18,7 +18,10 @@
 namespace relmap::cmm {
 namespace {
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// Not under TSan: GCC instruments the clones' ifunc resolver, which the dynamic loader
+// runs before TSan's runtime exists, and every program linking this file crashes at
+// load (scripts/sanitize.sh thread). The clones hold no shared state to check.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_THREAD__)
 #define RELMAP_MULTIVERSIONED __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else
 #define RELMAP_MULTIVERSIONED
