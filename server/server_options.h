@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <string>
 
+#include "session/frame_intake.h"
+
 namespace relmap::server {
 
 // The most frames a session may keep: each holds its cloud's supervoxels and features.
@@ -47,7 +49,7 @@ struct ServerOptions {
   // The longest a call waits in that queue before it is refused; its client's deadline
   // ends it sooner. Longer than one round-robin turn of all sessions, or a refused call
   // loses its place and waits the turn again (docs/reliability.md, "Fairness").
-  long long max_frame_wait_ms = 60000;
+  long long max_frame_wait_ms = session::kDefaultMaxFrameWait.count();
   std::string metrics_listen;
   std::string metrics_port_file;
 };

@@ -56,7 +56,7 @@ StatusOr<ChangeEvidence> Detect(const Cloud& before, const Cloud& after, const S
 StatusOr<ChangeEvidence> DetectChange(const Cloud& before, const Cloud& after,
                                       const Supervoxel& target,
                                       const ChangeDetectorConfig& config) {
-  return Detect(before, after, target, {}, config, std::chrono::steady_clock::now());
+  return DetectChange(before, after, target, {}, config);
 }
 
 StatusOr<ChangeEvidence> DetectChange(const Cloud& before, const Cloud& after,

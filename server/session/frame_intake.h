@@ -32,12 +32,16 @@ struct AdmittedCloud {
   std::chrono::steady_clock::time_point decoded_at;
 };
 
+// The longest a frame waits for its turn by default: longer than one round-robin turn
+// of hundreds of sessions (docs/reliability.md, "Fairness under load").
+inline constexpr std::chrono::milliseconds kDefaultMaxFrameWait{60000};
+
 struct FrameIntakeLimits {
   perception::DecodeLimits decode;
   // Clouds processed at once, clouds waiting, and the longest wait.
   std::size_t concurrent = 2;
   std::size_t queued = 4;
-  std::chrono::milliseconds max_wait{60000};
+  std::chrono::milliseconds max_wait = kDefaultMaxFrameWait;
 };
 
 class FrameIntake {
