@@ -58,6 +58,7 @@ class OdeScene final : public SimulatedScene {
   const KinectNoiseModel* depth_noise() const override {
     return camera_.sensor == Sensor::kKinectV1 ? &camera_.noise : nullptr;
   }
+  double motion_threshold() const override { return motion_threshold_; }
   // Renders at another size with the same field of view.
   void SetImageSize(std::uint32_t width, std::uint32_t height);
 

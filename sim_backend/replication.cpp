@@ -95,6 +95,8 @@ class Replication {
         change.set_noise_reference_depth(noise->axial_offset);
         change.set_noise_quantisation(QuantisationCoefficient(*noise));
       }
+      // ... and counts as moved what the scene's truth counts (ground_truth.h).
+      change.set_min_motion(scene_.motion_threshold());
     }
     return client::FromGrpc(client_.CreateSession(config, &session_), "CreateSession");
   }

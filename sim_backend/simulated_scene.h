@@ -73,6 +73,8 @@ class SimulatedScene {
   // The depth noise of the camera, for the change detector to judge depths by; nullptr for
   // an ideal camera (the server's defaults then, a Kinect v1's).
   virtual const KinectNoiseModel* depth_noise() const { return nullptr; }
+  // The distance (m) by which a point or body counts as moved (PushReport::motion_threshold).
+  virtual double motion_threshold() const = 0;
 };
 
 }  // namespace relmap::sim

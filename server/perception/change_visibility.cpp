@@ -16,6 +16,7 @@
 #include "perception/camera_motion.h"
 #include "perception/change_methods.h"
 #include "perception/grid_cell.h"
+#include "perception/perception_config.h"
 
 namespace relmap::perception {
 namespace {
@@ -32,6 +33,28 @@ double Tolerance(const ChangeDetectorConfig& config, double z) {
   const double depth = std::fabs(z);
   return config.tolerance_sigmas * std::sqrt(2.0) * config.noise.Sigma(depth) +
          config.noise.Step(depth);
+}
+
+// How far, and over how many pixels each way, a point is looked for in the after frame
+// before it counts as moved: the camera's noise, or the client's smallest motion that counts
+// where that is larger (a motion of m at depth z spans m fx / z pixels).
+struct Reach {
+  double distance;
+  int window;
+};
+
+Reach NoiseReach(const ChangeDetectorConfig& config, double z) {
+  return {Tolerance(config, z), config.search_window};
+}
+
+Reach MotionReach(const ChangeDetectorConfig& config, double fx, double z) {
+  const double pixels = std::ceil(config.min_motion * fx / std::max(std::fabs(z), 1e-3));
+  return {config.min_motion, static_cast<int>(std::min<double>(pixels, kMaxMotionWindow))};
+}
+
+// Without a pixel grid: the larger of the two distances, searched in 3-d.
+double StillThere(const ChangeDetectorConfig& config, double z) {
+  return std::max(Tolerance(config, z), config.min_motion);
 }
 
 enum class Seen { kSupported, kVacated, kOccluded, kUnknown };
@@ -241,9 +264,18 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
         config.colour_tolerance > 0 ? ColourGain(before, seen, config) : Eigen::Array3d::Ones();
     for (std::size_t k = 0; k < points.size(); ++k) {
       const auto& [index, p] = points[k];
-      seen_of[k] =
-          SeenAlongRay(seen, before.width(), before.height(), index, p, Tolerance(config, p.z),
-                       config.search_window, gain, config.colour_tolerance);
+      const Reach noise = NoiseReach(config, p.z);
+      seen_of[k] = SeenAlongRay(seen, before.width(), before.height(), index, p, noise.distance,
+                                noise.window, gain, config.colour_tolerance);
+      // Most points are found within the noise; only the rest are searched for a motion too
+      // small to count, over the wider window it needs.
+      if (seen_of[k] == Seen::kSupported || config.min_motion <= noise.distance) continue;
+      const Reach wider = MotionReach(config, intrinsics->fx, p.z);
+      if (SeenAlongRay(seen, before.width(), before.height(), index, p, wider.distance,
+                       std::max(noise.window, wider.window), gain,
+                       config.colour_tolerance) == Seen::kSupported) {
+        seen_of[k] = Seen::kSupported;
+      }
     }
   } else {
     Eigen::Vector3f lo = Position(points.front().second), hi = lo;
@@ -251,7 +283,7 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
     for (const auto& [index, p] : points) {
       lo = lo.cwiseMin(Position(p));
       hi = hi.cwiseMax(Position(p));
-      cell = std::max(cell, static_cast<float>(Tolerance(config, p.z)));
+      cell = std::max(cell, static_cast<float>(StillThere(config, p.z)));
     }
     if (estimate) {
       motion = estimate->before_from_after;
@@ -261,7 +293,7 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
     const NearbyAfterPoints nearby(after, motion, lo.array() - cell, hi.array() + cell, cell);
     for (std::size_t k = 0; k < points.size(); ++k) {
       const auto& [index, p] = points[k];
-      seen_of[k] = nearby.AnyWithin(Position(p), static_cast<float>(Tolerance(config, p.z)))
+      seen_of[k] = nearby.AnyWithin(Position(p), static_cast<float>(StillThere(config, p.z)))
                        ? Seen::kSupported
                        : Seen::kVacated;
     }

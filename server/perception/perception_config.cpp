@@ -97,6 +97,9 @@ Status Validate(const PerceptionConfig& config) {
   if (c.object_smooth_angle_deg < 0 || c.object_smooth_angle_deg > 90.0) {
     return Field("change.object_smooth_angle_deg", "in [0, 90]");
   }
+  if (!NonNegative(c.min_motion) || c.min_motion > kMaxMinMotion) {
+    return Field("change.min_motion", "in [0, 0.1] m");
+  }
   // The registration's cost grows with its samples (and 4x as many on the other side).
   if (c.motion_samples < 100 || c.motion_samples > 200000) {
     return Field("change.motion_samples", "in [100, 200000]");

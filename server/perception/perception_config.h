@@ -100,6 +100,12 @@ inline constexpr float kMaxFpfhRadius = 0.5f;
 inline constexpr double kMinOctreeResolution = 1e-3;
 inline constexpr double kMaxOctreeResolution = 1.0;
 
+// The change detector's smallest motion that counts (kVisibility), in metres (Validate), and
+// the widest pixel window searched for it: +-24 px covers 1 cm at 0.24 m on a 640x480 Kinect
+// (fx 580) and bounds a point's lookups at 49 x 49.
+inline constexpr double kMaxMinMotion = 0.1;
+inline constexpr int kMaxMotionWindow = 24;
+
 // 1 mm cells over 200 m make an 18-level octree; its leaves are at most the cloud's points
 // (DecodeLimits::max_points), its inner nodes at most 18 per leaf.
 static_assert(kMinVoxelResolution >= kFinestGridCell);
@@ -182,6 +188,12 @@ struct ChangeDetectorConfig {
   // normals are less than this apart (change_object.h; LCCP's concavity tolerance, Stein et
   // al. 2014, whose default is 10 degrees).
   double object_smooth_angle_deg = 10.0;
+  // The smallest motion that counts as a move, in metres (0: any the camera can see). A
+  // point is also still there when an after-point lies within this distance, searched over
+  // as many pixels as it spans at the point's depth (at most kMaxMotionWindow, each way): a body
+  // nudged by 5 mm while its neighbour was pushed away did not move for a client whose
+  // "moved" means more than 1 cm (relmap-sim tells the server its scene's threshold).
+  double min_motion = 0;
   // Register the after frame onto the before frame first (camera_motion.h): ICP of
   // motion_samples after-points, pairs farther apart than motion_max_distance left out (what
   // the push moved). 5 cm covers the 1.2 degrees and 1.3 cm of kinect_static_seq_* at 2 m.

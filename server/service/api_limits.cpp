@@ -84,6 +84,7 @@ constexpr FieldRange kSessionConfigRanges[] = {
     Closed("change_detector.colour_tolerance", 0, 255, "", "change.colour_tolerance"),
     Closed("change_detector.object_smooth_angle_deg", 0, 90, "degrees",
            "change.object_smooth_angle_deg"),
+    Closed("change_detector.min_motion", 0, perception::kMaxMinMotion, "m", "change.min_motion"),
     Closed("features.fpfh_radius", perception::kMinFpfhRadius, perception::kMaxFpfhRadius, "m"),
 };
 // clang-format on

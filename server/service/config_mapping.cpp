@@ -153,6 +153,7 @@ StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& co
   if (cd.has_min_vacated_fraction()) change.min_vacated_fraction = cd.min_vacated_fraction();
   if (cd.has_min_vacated_points()) change.min_vacated_points = cd.min_vacated_points();
   if (cd.has_colour_tolerance()) change.colour_tolerance = cd.colour_tolerance();
+  if (cd.has_min_motion()) change.min_motion = cd.min_motion();
   if (cd.has_object_smooth_angle_deg()) {
     change.object_smooth_angle_deg = cd.object_smooth_angle_deg();
   }
@@ -212,6 +213,7 @@ v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings) {
   cd->set_compensate_camera_motion(change.compensate_camera_motion);
   cd->set_colour_tolerance(change.colour_tolerance);
   cd->set_object_smooth_angle_deg(change.object_smooth_angle_deg);
+  cd->set_min_motion(change.min_motion);
   FeaturesToProto(settings.perception.features, config.mutable_features());
   config.set_seed(settings.classifier.seed);
   config.set_feature_dimension(static_cast<std::uint32_t>(settings.feature_dimension));

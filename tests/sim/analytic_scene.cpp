@@ -181,7 +181,7 @@ PushReport AnalyticScene::Push(const Eigen::Vector3f& target, std::uint64_t seed
   PushReport report;
   report.executed = true;
   report.simulated_seconds = 1.0;
-  report.motion_threshold = 0.01;  // ODE scenes' default
+  report.motion_threshold = motion_threshold();
   report.body_motions.assign(bodies_.size(), Eigen::Isometry3f::Identity());
   std::size_t nearest = kTable;
   float distance = Distance(bodies_[kTable], target);

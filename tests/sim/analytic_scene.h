@@ -36,6 +36,7 @@ class AnalyticScene : public SimulatedScene {
   bool IsMoveable(std::int32_t body_id) const override;
   void Respawn(std::uint64_t seed) override;
   PushReport Push(const Eigen::Vector3f& target, std::uint64_t seed) override;
+  double motion_threshold() const override { return 0.01; }  // ODE scenes' default
 
   // The centre of body `id` (the table's is its surface's centre).
   Eigen::Vector3f centre(std::int32_t id) const {

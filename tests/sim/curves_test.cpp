@@ -48,7 +48,7 @@ TEST(IterationCsv, OneRowPerIterationWithEmptyFieldsForWhatIsUndefinedOrAbsent) 
   r.iterations[0].label = true;
   r.iterations[0].truth = false;
   r.iterations[0].mislabelled = 1;
-  r.iterations[0].push = PushReport{true, 3, {3, 5}, 1.5};
+  r.iterations[0].push = PushReport{true, 3, {3, 5}, 1.5, {}, 0.01};
   std::ostringstream out;
   ReplicationResult with_change = r;
   with_change.iterations[0].change = ChangeCounts{120, 20, 90, 4, 12.5};

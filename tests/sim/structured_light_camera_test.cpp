@@ -102,13 +102,14 @@ TEST_P(FlatWall, DepthErrorsHaveTheModelsMeanAndSpread) {
     }
   }
   ASSERT_GT(n, 2u * 320 * 240 * 99 / 100);  // a plain wall in range has (almost) no holes
-  const double mean = sum / n;
-  const double sigma = std::sqrt(sum_sq / n - mean * mean);
-  const double expected = std::sqrt(expected_variance / n);
+  const auto count = static_cast<double>(n);
+  const double mean = sum / count;
+  const double sigma = std::sqrt(sum_sq / count - mean * mean);
+  const double expected = std::sqrt(expected_variance / count);
   EXPECT_LT(std::abs(mean),
-            0.1 * QuantisationStep(camera.noise, z) + 5 * expected / std::sqrt(double(n)))
+            0.1 * QuantisationStep(camera.noise, z) + 5 * expected / std::sqrt(count))
       << z;
-  EXPECT_NEAR(sigma, expected, 0.03 * expected + 5 * expected / std::sqrt(2.0 * n)) << z;
+  EXPECT_NEAR(sigma, expected, 0.03 * expected + 5 * expected / std::sqrt(2.0 * count)) << z;
 }
 
 // Every reported depth is f b / (k / 8) for an integer k, and the distinct depths
@@ -128,8 +129,8 @@ TEST_P(FlatWall, DepthsComeInDisparitySteps) {
   EXPECT_LE(*steps.rbegin() - *steps.begin() + 1, static_cast<long>(steps.size()) + 2);
   // Two neighbouring steps around z are QuantisationStep(z) apart (to first order).
   const long k = std::lround(DisparityOf(model, z) * model.disparity_steps_per_px);
-  const double gap =
-      model.ir_focal_px * model.baseline * model.disparity_steps_per_px * (1.0 / k - 1.0 / (k + 1));
+  const double gap = model.ir_focal_px * model.baseline * model.disparity_steps_per_px *
+                     (1.0 / static_cast<double>(k) - 1.0 / static_cast<double>(k + 1));
   EXPECT_NEAR(gap, QuantisationStep(model, z), 0.02 * QuantisationStep(model, z));
 }
 
