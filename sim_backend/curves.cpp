@@ -22,7 +22,8 @@ const char kIterationCsvHeader[] =
     "respawn_ms,capture_ms,maps_ms,server_maps_ms,evaluation_ms,snapshot_ms,push_ms,outcome_ms,"
     "iteration_ms,change_target_points,change_supported_points,change_vacated_points,"
     "change_occluded_points,change_ms,push_target_points,push_displaced_points,"
-    "push_target_displaced";
+    "push_target_displaced,change_object_supervoxels,change_object_points,"
+    "change_object_supported_points,change_object_vacated_points,change_object_occluded_points";
 
 namespace {
 
@@ -244,6 +245,14 @@ void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out) 
           << Bit(i.displacement->moved());
     } else {
       out << ",,,";
+    }
+    if (i.change) {
+      const ChangeCounts& c = *i.change;
+      out << ',' << c.object_supervoxels << ',' << c.object_points << ','
+          << c.object_supported_points << ',' << c.object_vacated_points << ','
+          << c.object_occluded_points;
+    } else {
+      out << ",,,,,";
     }
     out << '\n';
   }

@@ -42,6 +42,12 @@ struct ChangeCounts {
   std::uint64_t vacated_points = 0;
   std::uint64_t occluded_points = 0;
   double elapsed_ms = 0;  // inside the server
+  // The same over the target's object, the target included (ChangeEvidence.object_*).
+  std::uint64_t object_supervoxels = 0;
+  std::uint64_t object_points = 0;
+  std::uint64_t object_supported_points = 0;
+  std::uint64_t object_vacated_points = 0;
+  std::uint64_t object_occluded_points = 0;
 };
 
 struct IterationRecord {

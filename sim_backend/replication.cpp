@@ -228,8 +228,16 @@ class Replication {
     const bool label = response.label() == v1::LABEL_MOVEABLE;
     if (response.has_evidence()) {
       const v1::ChangeEvidence& e = response.evidence();
-      record->change = ChangeCounts{e.target_points(), e.supported_points(), e.vacated_points(),
-                                    e.occluded_points(), e.elapsed_ms()};
+      record->change = ChangeCounts{e.target_points(),
+                                    e.supported_points(),
+                                    e.vacated_points(),
+                                    e.occluded_points(),
+                                    e.elapsed_ms(),
+                                    e.object_supervoxels(),
+                                    e.object_points(),
+                                    e.object_supported_points(),
+                                    e.object_vacated_points(),
+                                    e.object_occluded_points()};
     }
     record->label = label;
     record->truth = truth;
