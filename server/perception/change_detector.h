@@ -33,6 +33,10 @@ struct ChangeEvidence {
   std::size_t object_supported_points = 0;
   std::size_t object_vacated_points = 0;
   std::size_t object_occluded_points = 0;
+  // Of the vacated points (the target's; the object's), those with nothing within the
+  // smallest motion that counts (ChangeDetectorConfig::min_motion) either.
+  std::size_t vacated_beyond_motion_points = 0;
+  std::size_t object_vacated_beyond_motion_points = 0;
   // The camera motion between the frames that was compensated first.
   double camera_rotation_deg = 0;
   double camera_translation_m = 0;

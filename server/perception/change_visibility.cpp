@@ -52,11 +52,6 @@ Reach MotionReach(const ChangeDetectorConfig& config, double fx, double z) {
   return {config.min_motion, static_cast<int>(std::min<double>(pixels, kMaxMotionWindow))};
 }
 
-// Without a pixel grid: the larger of the two distances, searched in 3-d.
-double StillThere(const ChangeDetectorConfig& config, double z) {
-  return std::max(Tolerance(config, z), config.min_motion);
-}
-
 enum class Seen { kSupported, kVacated, kOccluded, kUnknown };
 
 // The per-channel gain that maps the after frame's colours onto the before frame's: auto
@@ -180,11 +175,15 @@ constexpr std::size_t kObjectSamples = 2000;
 // What the after frame shows of a set of before-points.
 struct SeenCounts {
   std::size_t points = 0, supported = 0, vacated = 0, occluded = 0;
+  // Vacated points with nothing within min_motion of them either (all vacated ones when
+  // min_motion is under the noise's tolerance).
+  std::size_t vacated_beyond = 0;
 
-  void Add(Seen seen) {
+  void Add(Seen seen, bool beyond) {
     supported += seen == Seen::kSupported;
     vacated += seen == Seen::kVacated;
     occluded += seen == Seen::kOccluded;
+    vacated_beyond += seen == Seen::kVacated && beyond;
   }
   // A set the after frame mostly does not show (holes, the image border after the camera
   // moved) is not judged: half of it at least must be seen, occluded points included. The
@@ -194,9 +193,11 @@ struct SeenCounts {
   // front of one that stayed, so it counts neither way. And a few points seen through are not
   // enough: a camera that moved reveals a strip behind every edge (8 of 53 points of a
   // supervoxel of kinect_static_seq_1 -> 2).
+  // The share is judged by the camera's noise alone; the smallest motion that counts only
+  // asks that min_points of the vacated points moved farther than it.
   bool Moved(double min_fraction, std::size_t min_points) const {
     const std::size_t shown = supported + vacated + occluded;
-    return 2 * shown >= points && vacated >= min_points &&
+    return 2 * shown >= points && vacated >= min_points && vacated_beyond >= min_points &&
            static_cast<double>(vacated) >= min_fraction * static_cast<double>(supported + vacated);
   }
 };
@@ -233,6 +234,8 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
   e.object_points = target_count + rest.size();
   if (target_count == 0) return;
   std::vector<Seen> seen_of(points.size(), Seen::kUnknown);
+  // Whether a vacated point has no after-point within min_motion either.
+  std::vector<bool> beyond_motion(points.size(), true);
 
   const std::optional<Intrinsics> intrinsics = IntrinsicsOf(before);
   std::optional<CameraMotion> estimate;
@@ -267,15 +270,13 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
       const Reach noise = NoiseReach(config, p.z);
       seen_of[k] = SeenAlongRay(seen, before.width(), before.height(), index, p, noise.distance,
                                 noise.window, gain, config.colour_tolerance);
-      // Most points are found within the noise; only the rest are searched for a motion too
-      // small to count, over the wider window it needs.
-      if (seen_of[k] == Seen::kSupported || config.min_motion <= noise.distance) continue;
+      // Only vacated points are searched again, over the wider window a motion too small to
+      // count needs.
+      if (seen_of[k] != Seen::kVacated || config.min_motion <= noise.distance) continue;
       const Reach wider = MotionReach(config, intrinsics->fx, p.z);
-      if (SeenAlongRay(seen, before.width(), before.height(), index, p, wider.distance,
-                       std::max(noise.window, wider.window), gain,
-                       config.colour_tolerance) == Seen::kSupported) {
-        seen_of[k] = Seen::kSupported;
-      }
+      beyond_motion[k] = SeenAlongRay(seen, before.width(), before.height(), index, p,
+                                      wider.distance, std::max(noise.window, wider.window), gain,
+                                      config.colour_tolerance) != Seen::kSupported;
     }
   } else {
     Eigen::Vector3f lo = Position(points.front().second), hi = lo;
@@ -283,7 +284,8 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
     for (const auto& [index, p] : points) {
       lo = lo.cwiseMin(Position(p));
       hi = hi.cwiseMax(Position(p));
-      cell = std::max(cell, static_cast<float>(StillThere(config, p.z)));
+      cell =
+          std::max(cell, static_cast<float>(std::max(Tolerance(config, p.z), config.min_motion)));
     }
     if (estimate) {
       motion = estimate->before_from_after;
@@ -293,16 +295,18 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
     const NearbyAfterPoints nearby(after, motion, lo.array() - cell, hi.array() + cell, cell);
     for (std::size_t k = 0; k < points.size(); ++k) {
       const auto& [index, p] = points[k];
-      seen_of[k] = nearby.AnyWithin(Position(p), static_cast<float>(StillThere(config, p.z)))
-                       ? Seen::kSupported
-                       : Seen::kVacated;
+      const double tolerance = Tolerance(config, p.z);
+      seen_of[k] = nearby.AnyWithin(Position(p), static_cast<float>(tolerance)) ? Seen::kSupported
+                                                                                : Seen::kVacated;
+      beyond_motion[k] = config.min_motion <= tolerance ||
+                         !nearby.AnyWithin(Position(p), static_cast<float>(config.min_motion));
     }
   }
   SeenCounts of_target, of_rest;
   of_target.points = target_count;
   of_rest.points = points.size() - target_count;
   for (std::size_t k = 0; k < points.size(); ++k) {
-    (k < target_count ? of_target : of_rest).Add(seen_of[k]);
+    (k < target_count ? of_target : of_rest).Add(seen_of[k], beyond_motion[k]);
   }
   const std::size_t weight = std::max<std::size_t>(1, stride);
   SeenCounts of_object;
@@ -310,12 +314,15 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
   of_object.supported = of_target.supported + weight * of_rest.supported;
   of_object.vacated = of_target.vacated + weight * of_rest.vacated;
   of_object.occluded = of_target.occluded + weight * of_rest.occluded;
+  of_object.vacated_beyond = of_target.vacated_beyond + weight * of_rest.vacated_beyond;
   e.supported_points = of_target.supported;
   e.vacated_points = of_target.vacated;
   e.occluded_points = of_target.occluded;
   e.object_supported_points = of_object.supported;
   e.object_vacated_points = of_object.vacated;
   e.object_occluded_points = of_object.occluded;
+  e.vacated_beyond_motion_points = of_target.vacated_beyond;
+  e.object_vacated_beyond_motion_points = of_object.vacated_beyond;
   // A push moves an object, not a supervoxel: the target moved with its object when the
   // object shows the vacated share of a move (a brick slid along its own top: its top's
   // pixels see the same surface, its trailing faces are seen through; a small object whose

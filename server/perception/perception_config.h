@@ -189,10 +189,12 @@ struct ChangeDetectorConfig {
   // al. 2014, whose default is 10 degrees).
   double object_smooth_angle_deg = 10.0;
   // The smallest motion that counts as a move, in metres (0: any the camera can see). A
-  // point is also still there when an after-point lies within this distance, searched over
-  // as many pixels as it spans at the point's depth (at most kMaxMotionWindow, each way): a body
-  // nudged by 5 mm while its neighbour was pushed away did not move for a client whose
-  // "moved" means more than 1 cm (relmap-sim tells the server its scene's threshold).
+  // move then also needs min_vacated_points vacated points with no after-point within this
+  // distance, searched over as many pixels as it spans at the point's depth (at most
+  // kMaxMotionWindow, each way): a body nudged by 5 mm while its neighbour was pushed away
+  // did not move for a client whose "moved" means more than 1 cm (relmap-sim tells the
+  // server its scene's threshold). The vacated share is still judged by the noise alone,
+  // so that a true move keeps the evidence of every point it left.
   double min_motion = 0;
   // Register the after frame onto the before frame first (camera_motion.h): ICP of
   // motion_samples after-points, pairs farther apart than motion_max_distance left out (what

@@ -250,6 +250,8 @@ void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence
   out->set_object_supported_points(evidence.object_supported_points);
   out->set_object_vacated_points(evidence.object_vacated_points);
   out->set_object_occluded_points(evidence.object_occluded_points);
+  out->set_vacated_beyond_motion_points(evidence.vacated_beyond_motion_points);
+  out->set_object_vacated_beyond_motion_points(evidence.object_vacated_beyond_motion_points);
 }
 
 session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud) {

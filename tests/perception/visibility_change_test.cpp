@@ -112,8 +112,9 @@ TEST(VisibilityChange, TheToleranceIsTheNoiseModels) {
 }
 
 // A motion the client does not count (ChangeDetectorConfig::min_motion) is none: the patch
-// pushed back by 1.5 tolerances (16 mm at 1 m) moved for a client that counts every motion,
-// and did not for one that counts only motions over 2 cm.
+// pushed back by 1.5 tolerances (16 mm at 1 m) left its inside vacated, which is a move for
+// a client that counts every motion; for one that counts only motions over 2 cm, its new
+// surface lies within 2 cm of every vacated point, and nothing moved far enough.
 TEST(VisibilityChange, AMotionUnderTheSmallestThatCountsIsNone) {
   const auto after = static_cast<float>(1.0 + 1.5 * ToleranceAtOneMetre());
   ChangeDetectorConfig config;
@@ -121,46 +122,49 @@ TEST(VisibilityChange, AMotionUnderTheSmallestThatCountsIsNone) {
   StatusOr<ChangeEvidence> any = DetectChange(Wall(1.0f), Wall(after), Patch(), config);
   ASSERT_TRUE(any.ok()) << any.status().message();
   EXPECT_EQ(any->vacated_points, kInside);
+  EXPECT_EQ(any->vacated_beyond_motion_points, kInside);
   EXPECT_TRUE(any->moved);
   config.min_motion = 0.02;
   StatusOr<ChangeEvidence> counted = DetectChange(Wall(1.0f), Wall(after), Patch(), config);
   ASSERT_TRUE(counted.ok()) << counted.status().message();
-  EXPECT_EQ(counted->supported_points, 400u);
+  EXPECT_EQ(counted->vacated_points, kInside);  // the share is the noise's
+  EXPECT_EQ(counted->vacated_beyond_motion_points, 0u);
   EXPECT_FALSE(counted->moved);
 }
 
-// A box 10 cm in front of the wall (the patch at 0.9 m) slid `columns` pixels to the right,
-// each 0.9 / 140 m = 6.4 mm: its before-points are found on its new surface only if the
-// search window reaches min_motion * 140 / 0.9 pixels and the distance is under min_motion.
-ChangeEvidence DetectSlid(std::uint32_t columns, double min_motion) {
+// A box 10 cm in front of the wall (the patch at 0.9 m) slid 8 pixels to the right, each
+// 0.9 / 140 m = 6.4 mm: 51 mm. Columns 70-76 see the wall 10 cm behind (column 77 is one
+// pixel, 6.4 mm, from the box's new edge at 78, within the noise's 9.4 mm): 7 x 20 vacated
+// whatever min_motion is. Which of them moved farther than min_motion is looked for over
+// min_motion * 140 / 0.9 pixels.
+ChangeEvidence DetectSlid(double min_motion) {
+  constexpr std::uint32_t kColumns = 8;
   const Cloud before = Wall(0.9f);
   const Cloud after = testing::PinholeCloud([&](std::uint32_t u, std::uint32_t v) {
-    return u >= 70 + columns && InPatch(u - columns, v) ? 0.9f : 1.0f;
+    return u >= 70 + kColumns && InPatch(u - kColumns, v) ? 0.9f : 1.0f;
   });
   ChangeDetectorConfig config;
   config.compensate_camera_motion = false;
   config.min_motion = min_motion;
   StatusOr<ChangeEvidence> e = DetectChange(before, after, Patch(), config);
   EXPECT_TRUE(e.ok()) << e.status().message();
+  EXPECT_EQ(e.ok() ? e->vacated_points : 0u, 7u * 20u);
   return e.ok() ? *e : ChangeEvidence{};
 }
 
 TEST(VisibilityChange, TheSmallestMotionThatCountsIsLookedForSideways) {
-  // 8 columns = 51 mm. Counting every motion, columns 70-76 see the wall 10 cm behind
-  // (column 77 is one pixel, 6.4 mm, from the box's new edge at 78): 7 x 20 vacated.
-  const ChangeEvidence any = DetectSlid(8, 0.0);
-  EXPECT_EQ(any.vacated_points, 7u * 20u);
+  const ChangeEvidence any = DetectSlid(0.0);
+  EXPECT_EQ(any.vacated_beyond_motion_points, 7u * 20u);
   EXPECT_TRUE(any.moved);
-  // Counting motions over 6 cm: a window of ceil(0.06 * 140 / 0.9) = 10 pixels reaches
-  // each point's new place, 51 mm away: all still there.
-  const ChangeEvidence under = DetectSlid(8, 0.06);
-  EXPECT_EQ(under.supported_points, 400u);
+  // Over 6 cm: a window of ceil(0.06 * 140 / 0.9) = 10 pixels reaches each vacated point's
+  // new place, 51 mm away: none moved far enough.
+  const ChangeEvidence under = DetectSlid(0.06);
+  EXPECT_EQ(under.vacated_beyond_motion_points, 0u);
   EXPECT_FALSE(under.moved);
-  // Counting motions over 2 cm: a window of ceil(0.02 * 140 / 0.9) = 4 pixels, and what is
-  // left is the strip the box left by more than 2 cm: columns 70-74 (column 75 is 3 pixels,
-  // 19.3 mm, from the new edge): 5 x 20 vacated, 25 % of the points, still a move.
-  const ChangeEvidence over = DetectSlid(8, 0.02);
-  EXPECT_EQ(over.vacated_points, 5u * 20u);
+  // Over 2 cm: a window of 4 pixels, and columns 70-74 are farther than 2 cm from the box's
+  // new edge (column 75 is 3 pixels, 19.3 mm, from it): 5 x 20, a move.
+  const ChangeEvidence over = DetectSlid(0.02);
+  EXPECT_EQ(over.vacated_beyond_motion_points, 5u * 20u);
   EXPECT_TRUE(over.moved);
 }
 
