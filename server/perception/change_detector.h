@@ -34,7 +34,7 @@ struct ChangeEvidence {
   std::size_t object_vacated_points = 0;
   std::size_t object_occluded_points = 0;
   // Of the vacated points (the target's; the object's), those with nothing within the
-  // smallest motion that counts (ChangeDetectorConfig::min_motion) that is not behind them.
+  // smallest motion that counts (ChangeDetectorConfig::min_motion) either.
   std::size_t vacated_beyond_motion_points = 0;
   std::size_t object_vacated_beyond_motion_points = 0;
   // The camera motion between the frames that was compensated first.

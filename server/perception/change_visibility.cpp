@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <optional>
 #include <unordered_map>
 #include <vector>
@@ -113,30 +112,6 @@ Seen SeenAlongRay(const std::vector<SeenPoint>& after, std::uint32_t width, std:
   return Seen::kOccluded;
 }
 
-// Whether the after frame shows, within `window` pixels of the before-point p's, a surface
-// within `distance` of p that is not behind it by more than `behind`: where p's own surface
-// went if it moved by less than `distance`. A surface behind p is what its leaving revealed
-// (the table 8 mm under a plate that slid away), not p's surface nudged.
-bool SurfaceNearNotBehind(const std::vector<SeenPoint>& after, std::uint32_t width,
-                          std::uint32_t height, std::size_t index, const Eigen::Vector3f& p,
-                          double distance, int window, double behind) {
-  const auto w = static_cast<std::int64_t>(width);
-  const auto h = static_cast<std::int64_t>(height);
-  const auto u = static_cast<std::int64_t>(index) % w;
-  const auto v = static_cast<std::int64_t>(index) / w;
-  const auto squared = static_cast<float>(distance * distance);
-  const auto deepest = static_cast<float>(p.z() + behind);
-  for (std::int64_t y = std::max<std::int64_t>(0, v - window); y <= std::min(h - 1, v + window);
-       ++y) {
-    for (std::int64_t x = std::max<std::int64_t>(0, u - window); x <= std::min(w - 1, u + window);
-         ++x) {
-      const Eigen::Vector3f& q = after[static_cast<std::size_t>(y * w + x)].position;
-      if (q.allFinite() && q.z() <= deepest && (q - p).squaredNorm() <= squared) return true;
-    }
-  }
-  return false;
-}
-
 // The share of the before frame's points (every 16th) that `after` still shows within the
 // tolerance, by geometry alone.
 double SupportedShare(const Cloud& before, const std::vector<SeenPoint>& after,
@@ -170,9 +145,7 @@ class NearbyAfterPoints {
     }
   }
 
-  // Only points at most `max_depth` deep count (all by default).
-  bool AnyWithin(const Eigen::Vector3f& p, float radius,
-                 float max_depth = std::numeric_limits<float>::infinity()) const {
+  bool AnyWithin(const Eigen::Vector3f& p, float radius) const {
     const float squared = radius * radius;
     for (int dx = -1; dx <= 1; ++dx) {
       for (int dy = -1; dy <= 1; ++dy) {
@@ -182,7 +155,7 @@ class NearbyAfterPoints {
               p.z() + static_cast<float>(dz) * cell_, inverse_));
           if (it == cells_.end()) continue;
           for (const Eigen::Vector3f& q : it->second) {
-            if (q.z() <= max_depth && (q - p).squaredNorm() <= squared) return true;
+            if ((q - p).squaredNorm() <= squared) return true;
           }
         }
       }
@@ -301,9 +274,9 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
       // count needs.
       if (seen_of[k] != Seen::kVacated || config.min_motion <= noise.distance) continue;
       const Reach wider = MotionReach(config, intrinsics->fx, p.z);
-      beyond_motion[k] = !SurfaceNearNotBehind(
-          seen, before.width(), before.height(), index, Position(p), wider.distance,
-          std::max(noise.window, wider.window), noise.distance);
+      beyond_motion[k] = SeenAlongRay(seen, before.width(), before.height(), index, p,
+                                      wider.distance, std::max(noise.window, wider.window), gain,
+                                      config.colour_tolerance) != Seen::kSupported;
     }
   } else {
     Eigen::Vector3f lo = Position(points.front().second), hi = lo;
@@ -326,8 +299,7 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
       seen_of[k] = nearby.AnyWithin(Position(p), static_cast<float>(tolerance)) ? Seen::kSupported
                                                                                 : Seen::kVacated;
       beyond_motion[k] = config.min_motion <= tolerance ||
-                         !nearby.AnyWithin(Position(p), static_cast<float>(config.min_motion),
-                                           static_cast<float>(p.z + tolerance));
+                         !nearby.AnyWithin(Position(p), static_cast<float>(config.min_motion));
     }
   }
   SeenCounts of_target, of_rest;

@@ -190,9 +190,7 @@ struct ChangeDetectorConfig {
   double object_smooth_angle_deg = 10.0;
   // The smallest motion that counts as a move, in metres (0: any the camera can see). A
   // move then also needs min_vacated_points vacated points with no after-point within this
-  // distance that is not behind them by more than the noise (a surface behind is what the
-  // move revealed: the table under a plate), searched over as many pixels as it spans at
-  // the point's depth (at most
+  // distance, searched over as many pixels as it spans at the point's depth (at most
   // kMaxMotionWindow, each way): a body nudged by 5 mm while its neighbour was pushed away
   // did not move for a client whose "moved" means more than 1 cm (relmap-sim tells the
   // server its scene's threshold). The vacated share is still judged by the noise alone,
