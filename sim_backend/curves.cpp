@@ -23,7 +23,8 @@ const char kIterationCsvHeader[] =
     "iteration_ms,change_target_points,change_supported_points,change_vacated_points,"
     "change_occluded_points,change_ms,push_target_points,push_displaced_points,"
     "push_target_displaced,change_object_supervoxels,change_object_points,"
-    "change_object_supported_points,change_object_vacated_points,change_object_occluded_points";
+    "change_object_supported_points,change_object_vacated_points,change_object_occluded_points,"
+    "change_vacated_beyond_motion_points,change_object_vacated_beyond_motion_points";
 
 namespace {
 
@@ -250,9 +251,10 @@ void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out) 
       const ChangeCounts& c = *i.change;
       out << ',' << c.object_supervoxels << ',' << c.object_points << ','
           << c.object_supported_points << ',' << c.object_vacated_points << ','
-          << c.object_occluded_points;
+          << c.object_occluded_points << ',' << c.vacated_beyond_motion_points << ','
+          << c.object_vacated_beyond_motion_points;
     } else {
-      out << ",,,,,";
+      out << ",,,,,,,";
     }
     out << '\n';
   }

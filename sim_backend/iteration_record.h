@@ -48,6 +48,10 @@ struct ChangeCounts {
   std::uint64_t object_supported_points = 0;
   std::uint64_t object_vacated_points = 0;
   std::uint64_t object_occluded_points = 0;
+  // Vacated points, the target's and the object's, that moved beyond the smallest motion
+  // that counts (ChangeEvidence.*vacated_beyond_motion_points).
+  std::uint64_t vacated_beyond_motion_points = 0;
+  std::uint64_t object_vacated_beyond_motion_points = 0;
 };
 
 struct IterationRecord {

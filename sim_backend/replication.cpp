@@ -237,7 +237,9 @@ class Replication {
                                     e.object_points(),
                                     e.object_supported_points(),
                                     e.object_vacated_points(),
-                                    e.object_occluded_points()};
+                                    e.object_occluded_points(),
+                                    e.vacated_beyond_motion_points(),
+                                    e.object_vacated_beyond_motion_points()};
     }
     record->label = label;
     record->truth = truth;

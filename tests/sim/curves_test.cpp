@@ -51,23 +51,24 @@ TEST(IterationCsv, OneRowPerIterationWithEmptyFieldsForWhatIsUndefinedOrAbsent) 
   r.iterations[0].push = PushReport{true, 3, {3, 5}, 1.5, {}, 0.01};
   std::ostringstream out;
   ReplicationResult with_change = r;
-  with_change.iterations[0].change = ChangeCounts{120, 20, 90, 4, 12.5, 3, 400, 250, 130, 4};
+  with_change.iterations[0].change =
+      ChangeCounts{120, 20, 90, 4, 12.5, 3, 400, 250, 130, 4, 70, 110};
   with_change.iterations[0].displacement = SupervoxelDisplacement{114, 60};
   std::ostringstream changed;
   WriteIterationCsv(with_change, changed);
   EXPECT_EQ(Lines(changed.str())[1].substr(Lines(changed.str())[1].rfind("100.000")),
-            "100.000,120,20,90,4,12.500,114,60,1,3,400,250,130,4");
+            "100.000,120,20,90,4,12.500,114,60,1,3,400,250,130,4,70,110");
   WriteIterationCsv(r, out);
   const std::vector<std::string> lines = Lines(out.str());
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[0], kIterationCsvHeader);
   EXPECT_EQ(lines[1],
             "1,300,17,1,0,1,0.5,1,0.75,,0.25,0.5,3,4,1,2,1,3,1,2,1.5,"
-            "0.000,0.000,60.000,0.000,0.000,0.000,0.000,0.000,100.000,,,,,,,,,,,,,");
+            "0.000,0.000,60.000,0.000,0.000,0.000,0.000,0.000,100.000,,,,,,,,,,,,,,,");
   // No target: no label, no truth, no push; an undefined accuracy is empty too.
   EXPECT_EQ(lines[2],
             "2,300,,,,0,0.5,1,,,0.25,0.5,3,4,1,2,,,,,,"
-            "0.000,0.000,60.000,0.000,0.000,0.000,0.000,0.000,100.000,,,,,,,,,,,,,");
+            "0.000,0.000,60.000,0.000,0.000,0.000,0.000,0.000,100.000,,,,,,,,,,,,,,,");
 }
 
 TEST(SummaryJson, CountsTheFailedRunsAndSpreadsTheFinalScores) {
