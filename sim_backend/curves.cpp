@@ -235,9 +235,9 @@ void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out) 
       out << ',' << Milliseconds(ms);
     }
     if (i.change) {
-      out << ',' << i.change->target_points << ',' << i.change->supported_points << ','
-          << i.change->vacated_points << ',' << i.change->occluded_points << ','
-          << Milliseconds(i.change->elapsed_ms);
+      const v1::ChangeEvidence& c = *i.change;
+      out << ',' << c.target_points() << ',' << c.supported_points() << ',' << c.vacated_points()
+          << ',' << c.occluded_points() << ',' << Milliseconds(c.elapsed_ms());
     } else {
       out << ",,,,,";
     }
@@ -248,11 +248,11 @@ void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out) 
       out << ",,,";
     }
     if (i.change) {
-      const ChangeCounts& c = *i.change;
-      out << ',' << c.object_supervoxels << ',' << c.object_points << ','
-          << c.object_supported_points << ',' << c.object_vacated_points << ','
-          << c.object_occluded_points << ',' << c.vacated_beyond_motion_points << ','
-          << c.object_vacated_beyond_motion_points;
+      const v1::ChangeEvidence& c = *i.change;
+      out << ',' << c.object_supervoxels() << ',' << c.object_points() << ','
+          << c.object_supported_points() << ',' << c.object_vacated_points() << ','
+          << c.object_occluded_points() << ',' << c.vacated_beyond_motion_points() << ','
+          << c.object_vacated_beyond_motion_points();
     } else {
       out << ",,,,,,,";
     }

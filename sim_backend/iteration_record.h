@@ -35,25 +35,6 @@ struct ModelCounts {
   std::uint32_t non_moveable_components = 0;
 };
 
-// Physical mode: what the server's change detector counted (ChangeEvidence, visibility).
-struct ChangeCounts {
-  std::uint64_t target_points = 0;
-  std::uint64_t supported_points = 0;
-  std::uint64_t vacated_points = 0;
-  std::uint64_t occluded_points = 0;
-  double elapsed_ms = 0;  // inside the server
-  // The same over the target's object, the target included (ChangeEvidence.object_*).
-  std::uint64_t object_supervoxels = 0;
-  std::uint64_t object_points = 0;
-  std::uint64_t object_supported_points = 0;
-  std::uint64_t object_vacated_points = 0;
-  std::uint64_t object_occluded_points = 0;
-  // Vacated points, the target's and the object's, that moved beyond the smallest motion
-  // that counts (ChangeEvidence.*vacated_beyond_motion_points).
-  std::uint64_t vacated_beyond_motion_points = 0;
-  std::uint64_t object_vacated_beyond_motion_points = 0;
-};
-
 struct IterationRecord {
   int iteration = 0;  // 1-based
   std::size_t supervoxels = 0;
@@ -75,7 +56,8 @@ struct IterationRecord {
   std::optional<PushReport> push;
   // Physical mode, an executed push: how many of the target's points it displaced.
   std::optional<SupervoxelDisplacement> displacement;
-  std::optional<ChangeCounts> change;
+  // Physical mode: the server's change detector's evidence for the label, as answered.
+  std::optional<v1::ChangeEvidence> change;
   IterationTimings timings;
 };
 

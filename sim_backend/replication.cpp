@@ -226,21 +226,7 @@ class Replication {
     if (client::IsFrameGone(posted)) return OkStatus();
     if (Status status = client::FromGrpc(posted, "PostOutcome"); !status.ok()) return status;
     const bool label = response.label() == v1::LABEL_MOVEABLE;
-    if (response.has_evidence()) {
-      const v1::ChangeEvidence& e = response.evidence();
-      record->change = ChangeCounts{e.target_points(),
-                                    e.supported_points(),
-                                    e.vacated_points(),
-                                    e.occluded_points(),
-                                    e.elapsed_ms(),
-                                    e.object_supervoxels(),
-                                    e.object_points(),
-                                    e.object_supported_points(),
-                                    e.object_vacated_points(),
-                                    e.object_occluded_points(),
-                                    e.vacated_beyond_motion_points(),
-                                    e.object_vacated_beyond_motion_points()};
-    }
+    if (response.has_evidence()) record->change = response.evidence();
     record->label = label;
     record->truth = truth;
     if (label != truth) ++mislabelled_;

@@ -51,8 +51,12 @@ TEST(IterationCsv, OneRowPerIterationWithEmptyFieldsForWhatIsUndefinedOrAbsent) 
   r.iterations[0].push = PushReport{true, 3, {3, 5}, 1.5, {}, 0.01};
   std::ostringstream out;
   ReplicationResult with_change = r;
-  with_change.iterations[0].change =
-      ChangeCounts{120, 20, 90, 4, 12.5, 3, 400, 250, 130, 4, 70, 110};
+  v1::ChangeEvidence& e = with_change.iterations[0].change.emplace();
+  e.set_target_points(120), e.set_supported_points(20), e.set_vacated_points(90);
+  e.set_occluded_points(4), e.set_elapsed_ms(12.5);
+  e.set_object_supervoxels(3), e.set_object_points(400), e.set_object_supported_points(250);
+  e.set_object_vacated_points(130), e.set_object_occluded_points(4);
+  e.set_vacated_beyond_motion_points(70), e.set_object_vacated_beyond_motion_points(110);
   with_change.iterations[0].displacement = SupervoxelDisplacement{114, 60};
   std::ostringstream changed;
   WriteIterationCsv(with_change, changed);
