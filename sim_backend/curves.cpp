@@ -24,7 +24,10 @@ const char kIterationCsvHeader[] =
     "change_occluded_points,change_ms,push_target_points,push_displaced_points,"
     "push_target_displaced,change_object_supervoxels,change_object_points,"
     "change_object_supported_points,change_object_vacated_points,change_object_occluded_points,"
-    "change_vacated_beyond_motion_points,change_object_vacated_beyond_motion_points";
+    "change_vacated_beyond_motion_points,change_object_vacated_beyond_motion_points,"
+    "change_object_motion_fitted,change_object_motion_translation_m,"
+    "change_carried_supported_points,change_carried_vacated_points,"
+    "change_carried_occluded_points";
 
 namespace {
 
@@ -252,9 +255,13 @@ void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out) 
       out << ',' << c.object_supervoxels() << ',' << c.object_points() << ','
           << c.object_supported_points() << ',' << c.object_vacated_points() << ','
           << c.object_occluded_points() << ',' << c.vacated_beyond_motion_points() << ','
-          << c.object_vacated_beyond_motion_points();
+          << c.object_vacated_beyond_motion_points() << ',' << Bit(c.object_motion_fitted()) << ','
+          << Field(c.object_motion_fitted() ? std::optional<double>(c.object_motion_translation_m())
+                                            : std::nullopt)
+          << ',' << c.carried_supported_points() << ',' << c.carried_vacated_points() << ','
+          << c.carried_occluded_points();
     } else {
-      out << ",,,,,,,";
+      out << ",,,,,,,,,,,,";
     }
     out << '\n';
   }

@@ -37,6 +37,16 @@ struct ChangeEvidence {
   // smallest motion that counts (ChangeDetectorConfig::min_motion) either.
   std::size_t vacated_beyond_motion_points = 0;
   std::size_t object_vacated_beyond_motion_points = 0;
+  // When the object showed a move that the target's own points did not: the rigid motion
+  // fitted to the object's supervoxels that moved (object_motion.h), if one fitted, and
+  // what the after frame shows where it carries the target's points. A target seen through
+  // there did not go with its object (a body flush against the pushed one), and is not moved.
+  bool object_motion_fitted = false;
+  double object_motion_translation_m = 0;
+  double object_motion_rotation_deg = 0;
+  std::size_t carried_supported_points = 0;
+  std::size_t carried_vacated_points = 0;
+  std::size_t carried_occluded_points = 0;
   // The camera motion between the frames that was compensated first.
   double camera_rotation_deg = 0;
   double camera_translation_m = 0;

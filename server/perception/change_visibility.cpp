@@ -16,6 +16,7 @@
 #include "perception/camera_motion.h"
 #include "perception/change_methods.h"
 #include "perception/grid_cell.h"
+#include "perception/object_motion.h"
 #include "perception/perception_config.h"
 
 namespace relmap::perception {
@@ -202,13 +203,148 @@ struct SeenCounts {
   }
 };
 
-// The finite points of `s`, by index into `before`.
-void AppendFinitePoints(const Cloud& before, const Supervoxel& s,
-                        std::vector<std::pair<std::size_t, CloudPoint>>& points) {
+// A point looked up: its index into `before`, the point, and the part of the object it is
+// on (0 the target, k the object's k-th other supervoxel).
+struct ObjectPoint {
+  std::size_t index;
+  CloudPoint point;
+  std::size_t part;
+};
+
+// The finite points of `s`, part `part` of the object.
+void AppendFinitePoints(const Cloud& before, const Supervoxel& s, std::size_t part,
+                        std::vector<ObjectPoint>& points) {
   for (const std::int32_t i : s.point_indices) {
     const CloudPoint p = before.point(static_cast<std::size_t>(i));
-    if (Finite(p)) points.emplace_back(static_cast<std::size_t>(i), p);
+    if (Finite(p)) points.push_back({static_cast<std::size_t>(i), p, part});
   }
+}
+
+// How much more often the carried target must be seen through than the target at its own
+// place (a z statistic, SeenThroughMore) to say it did not go: three standard errors.
+constexpr double kFollowVetoZ = 3.0;
+// The largest displacement of an object the rigid check looks for (metres): a push that
+// moves an object farther also moves most of what it touches, target included.
+constexpr float kObjectMotionReach = 0.05F;
+// Neighbours farther apart than this across a pixel's normal (metres) are on two surfaces.
+constexpr float kNormalMaxGap = 0.02F;
+// Fewer points than this do not pin down a rigid motion against the camera's noise; more
+// than kMaxMotionFitPoints (an even sample) add time, not accuracy.
+constexpr std::size_t kMinMotionFitPoints = 30;
+constexpr std::size_t kMaxMotionFitPoints = 500;
+
+// What the after frame (`seen`, in the before frame's pixels) shows where `motion` takes the
+// target's points (points[0, target_count)): still there, seen through or hidden, as for the
+// points themselves.
+SeenCounts CarriedCounts(const std::vector<ObjectPoint>& points, std::size_t target_count,
+                         const Eigen::Isometry3f& motion, const std::vector<SeenPoint>& seen,
+                         const Cloud& before, const Intrinsics& k, const Eigen::Array3d& gain,
+                         const ChangeDetectorConfig& config) {
+  SeenCounts carried;
+  carried.points = target_count;
+  for (std::size_t i = 0; i < target_count; ++i) {
+    const Eigen::Vector3f q = motion * Position(points[i].point);
+    if (!(q.z() > 0)) continue;
+    const double u = std::round(k.fx * q.x() / q.z() + k.cx);
+    const double v = std::round(k.fy * q.y() / q.z() + k.cy);
+    if (!(u >= 0 && v >= 0 && u < before.width() && v < before.height())) continue;
+    CloudPoint moved = points[i].point;
+    moved.x = q.x(), moved.y = q.y(), moved.z = q.z();
+    const auto pixel = static_cast<std::size_t>(v) * before.width() + static_cast<std::size_t>(u);
+    carried.Add(
+        SeenAlongRay(seen, before.width(), before.height(), pixel, moved, Tolerance(config, q.z()),
+                     config.search_window, gain, config.colour_tolerance),
+        true);
+  }
+  return carried;
+}
+
+// Whether a part of the object changed: at least `min_fraction` of what the after frame shows
+// of it is seen through or hidden (a face turned towards the camera by the push is hidden
+// behind its own new place). With no floor on the count: a part is an even sample.
+bool Changed(const SeenCounts& part, double min_fraction) {
+  const std::size_t shown = part.supported + part.vacated + part.occluded;
+  return shown > 0 && 2 * shown >= part.points &&
+         static_cast<double>(part.vacated + part.occluded) >=
+             min_fraction * static_cast<double>(shown);
+}
+
+// Whether `a` is seen through at a larger share of its points than `b` (of those still
+// there or seen through), beyond chance: the one-sided two-proportion z statistic is at
+// least `z`. Points of a surface are not independent draws, so the z is a yardstick of
+// evidence, not a probability.
+bool SeenThroughMore(const SeenCounts& a, const SeenCounts& b, double z) {
+  const auto na = static_cast<double>(a.supported + a.vacated);
+  const auto nb = static_cast<double>(b.supported + b.vacated);
+  if (na == 0 || nb == 0) return false;
+  const double pooled = static_cast<double>(a.vacated + b.vacated) / (na + nb);
+  const double spread = std::sqrt(pooled * (1 - pooled) * (1 / na + 1 / nb));
+  if (!(spread > 0)) return false;
+  return (static_cast<double>(a.vacated) / na - static_cast<double>(b.vacated) / nb) / spread >= z;
+}
+
+// Whether the target went with its object, when the object shows a move and the target's
+// own points do not (a brick slid along its top, the top being the target; or a body flush
+// against the pushed one, joined to it by the object's flood): the rigid motion of the
+// object's parts that changed, fitted onto the after frame, carries the target's points
+// somewhere. The target went with them only if the after frame shows it there as well as
+// at its old place: at least half as many of its points still there, and a share seen
+// through not larger beyond chance. A face slid along itself is still there at both places,
+// and the object's word stands; so it does without a fit (too few points changed, a motion
+// that is not rigid or too large).
+bool FollowedObject(const std::vector<ObjectPoint>& points, std::size_t target_count,
+                    const SeenCounts& of_target, const std::vector<Seen>& seen_of,
+                    const std::vector<SeenPoint>& seen, const Cloud& before, const Intrinsics& k,
+                    const Eigen::Array3d& gain, const ChangeDetectorConfig& config,
+                    ChangeEvidence& e) {
+  std::unordered_map<std::size_t, SeenCounts> parts;
+  for (std::size_t i = target_count; i < points.size(); ++i) {
+    SeenCounts& part = parts[points[i].part];
+    ++part.points;
+    part.Add(seen_of[i], true);
+  }
+  std::vector<Eigen::Vector3f> changed;
+  Eigen::Vector3f lo = Position(points.front().point), hi = lo;
+  float tolerance = 0;
+  double depth = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3f p = Position(points[i].point);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+    tolerance = std::max(tolerance, static_cast<float>(Tolerance(config, p.z())));
+    depth += std::fabs(p.z());
+    if (i >= target_count && Changed(parts[points[i].part], config.min_vacated_fraction)) {
+      changed.push_back(p);
+    }
+  }
+  if (changed.size() < kMinMotionFitPoints) return true;
+  // An even sample of the part, and the after frame's surface every `step` pixels, about
+  // half the tolerance apart at the object's mean depth: finer adds time, not accuracy.
+  std::vector<Eigen::Vector3f> part;
+  const std::size_t stride = (changed.size() + kMaxMotionFitPoints - 1) / kMaxMotionFitPoints;
+  for (std::size_t i = 0; i < changed.size(); i += stride) part.push_back(changed[i]);
+  const double pitch = depth / static_cast<double>(points.size()) / k.fx;
+  const auto step = static_cast<std::uint32_t>(std::max(1.0, 0.5 * tolerance / pitch));
+  const Eigen::Vector3f margin = Eigen::Vector3f::Constant(kObjectMotionReach);
+  const std::vector<SurfacePoint> after = SurfaceWithin(seen, before.width(), before.height(), step,
+                                                        lo - margin, hi + margin, kNormalMaxGap);
+  const std::optional<ObjectMotion> fit =
+      FitObjectMotion(part, after, kObjectMotionReach, tolerance);
+  if (!fit) return true;
+  e.object_motion_fitted = true;
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+  for (const Eigen::Vector3f& p : part) centroid += p;
+  centroid /= static_cast<float>(part.size());
+  e.object_motion_translation_m = (fit->after_from_before * centroid - centroid).norm();
+  e.object_motion_rotation_deg =
+      Eigen::AngleAxisf(fit->after_from_before.linear()).angle() * 180.0 / M_PI;
+  const SeenCounts carried =
+      CarriedCounts(points, target_count, fit->after_from_before, seen, before, k, gain, config);
+  e.carried_supported_points = carried.supported;
+  e.carried_vacated_points = carried.vacated;
+  e.carried_occluded_points = carried.occluded;
+  return 2 * carried.supported >= of_target.supported &&
+         !SeenThroughMore(carried, of_target, kFollowVetoZ);
 }
 
 }  // namespace
@@ -220,11 +356,12 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
   // most kObjectSamples, so that an object that is a whole table (its flood reaches
   // what stands on it through a smooth straddling supervoxel) costs no more than a brick. The
   // object's counts are the sampled ones times the stride.
-  std::vector<std::pair<std::size_t, CloudPoint>> points;
-  AppendFinitePoints(before, target, points);
+  std::vector<ObjectPoint> points;
+  AppendFinitePoints(before, target, 0, points);
   const std::size_t target_count = points.size();
-  std::vector<std::pair<std::size_t, CloudPoint>> rest;
-  for (const Supervoxel* s : object) AppendFinitePoints(before, *s, rest);
+  std::vector<ObjectPoint> rest;
+  for (std::size_t k = 0; k < object.size(); ++k)
+    AppendFinitePoints(before, *object[k], k + 1, rest);
   const std::size_t stride = (rest.size() + kObjectSamples - 1) / kObjectSamples;
   for (std::size_t k = 0; k < rest.size(); k += std::max<std::size_t>(1, stride)) {
     points.push_back(rest[k]);
@@ -246,9 +383,12 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
     if (!estimate->converged) estimate.reset();
   }
   Eigen::Isometry3f motion = Eigen::Isometry3f::Identity();
+  // With a pixel grid: the after frame in the before frame's pixels, and the colour gain
+  // between them.
+  std::vector<SeenPoint> seen;
+  Eigen::Array3d gain = Eigen::Array3d::Ones();
   if (intrinsics) {
-    std::vector<SeenPoint> seen =
-        ReprojectInto(after, motion, *intrinsics, before.width(), before.height());
+    seen = ReprojectInto(after, motion, *intrinsics, before.width(), before.height());
     // The camera moved only if the frames agree better with the motion than without it: on
     // a still camera, the registration fits the sensor's noise and quantisation (0.1-0.3
     // degrees on the simulated Kinect), which would move every surface by a few mm.
@@ -263,10 +403,9 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
       }
     }
     // Only the colour check needs the gain.
-    const Eigen::Array3d gain =
-        config.colour_tolerance > 0 ? ColourGain(before, seen, config) : Eigen::Array3d::Ones();
+    if (config.colour_tolerance > 0) gain = ColourGain(before, seen, config);
     for (std::size_t k = 0; k < points.size(); ++k) {
-      const auto& [index, p] = points[k];
+      const auto& [index, p, part] = points[k];
       const Reach noise = NoiseReach(config, p.z);
       seen_of[k] = SeenAlongRay(seen, before.width(), before.height(), index, p, noise.distance,
                                 noise.window, gain, config.colour_tolerance);
@@ -279,9 +418,9 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
                                       config.colour_tolerance) != Seen::kSupported;
     }
   } else {
-    Eigen::Vector3f lo = Position(points.front().second), hi = lo;
+    Eigen::Vector3f lo = Position(points.front().point), hi = lo;
     float cell = 0;
-    for (const auto& [index, p] : points) {
+    for (const auto& [index, p, part] : points) {
       lo = lo.cwiseMin(Position(p));
       hi = hi.cwiseMax(Position(p));
       cell =
@@ -294,7 +433,7 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
     }
     const NearbyAfterPoints nearby(after, motion, lo.array() - cell, hi.array() + cell, cell);
     for (std::size_t k = 0; k < points.size(); ++k) {
-      const auto& [index, p] = points[k];
+      const auto& [index, p, part] = points[k];
       const double tolerance = Tolerance(config, p.z);
       seen_of[k] = nearby.AnyWithin(Position(p), static_cast<float>(tolerance)) ? Seen::kSupported
                                                                                 : Seen::kVacated;
@@ -327,9 +466,16 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
   // object shows the vacated share of a move (a brick slid along its own top: its top's
   // pixels see the same surface, its trailing faces are seen through; a small object whose
   // target supervoxel alone has too few points to count).
+  // Unless the motion of the object's parts that changed would carry the target where the
+  // after frame does not show it (FollowedObject). Without a pixel grid the object's word
+  // stands: no ray tells seen through from hidden.
   const auto min_points = static_cast<std::size_t>(config.min_vacated_points);
-  e.moved = of_target.Moved(config.min_vacated_fraction, min_points) ||
-            of_object.Moved(config.min_vacated_fraction, min_points);
+  if (of_target.Moved(config.min_vacated_fraction, min_points)) {
+    e.moved = true;
+  } else if (of_object.Moved(config.min_vacated_fraction, min_points)) {
+    e.moved = !intrinsics || FollowedObject(points, target_count, of_target, seen_of, seen, before,
+                                            *intrinsics, gain, config, e);
+  }
 }
 
 }  // namespace relmap::perception

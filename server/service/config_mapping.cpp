@@ -252,6 +252,12 @@ void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence
   out->set_object_occluded_points(evidence.object_occluded_points);
   out->set_vacated_beyond_motion_points(evidence.vacated_beyond_motion_points);
   out->set_object_vacated_beyond_motion_points(evidence.object_vacated_beyond_motion_points);
+  out->set_object_motion_fitted(evidence.object_motion_fitted);
+  out->set_object_motion_translation_m(evidence.object_motion_translation_m);
+  out->set_object_motion_rotation_deg(evidence.object_motion_rotation_deg);
+  out->set_carried_supported_points(evidence.carried_supported_points);
+  out->set_carried_vacated_points(evidence.carried_vacated_points);
+  out->set_carried_occluded_points(evidence.carried_occluded_points);
 }
 
 session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud) {
