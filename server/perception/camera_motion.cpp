@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 
+#include "perception/point_to_plane.h"
+
 namespace relmap::perception {
 namespace {
 
@@ -88,9 +90,7 @@ CameraMotion ProjectiveIcp(const Cloud& before, const Intrinsics& k, const Cloud
   CameraMotion motion;
   Eigen::Isometry3f estimate = Eigen::Isometry3f::Identity();
   for (int iteration = 0; iteration < kIterations; ++iteration) {
-    Eigen::Matrix<double, 6, 6> normal_matrix = Eigen::Matrix<double, 6, 6>::Zero();
-    Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
-    std::size_t pairs = 0;
+    PointToPlaneStep step;
     for (const Eigen::Vector3f& q : source) {
       const Eigen::Vector3f moved = estimate * q;
       if (!(moved.z() > 0)) continue;
@@ -103,27 +103,15 @@ CameraMotion ProjectiveIcp(const Cloud& before, const Intrinsics& k, const Cloud
       if (!p.allFinite() || (moved - p).norm() > max_distance) continue;
       const std::optional<Eigen::Vector3f> n = NormalAt(before, pu, pv, max_distance);
       if (!n) continue;
-      const double residual = n->dot(moved - p);
       // Huber weight at 1 cm: what moved in the push pulls less than the static scene.
-      const double weight = std::min(1.0, 0.01 / std::max(1e-9, std::fabs(residual)));
-      Eigen::Matrix<double, 6, 1> jacobian;
-      jacobian << moved.cross(*n).cast<double>(), n->cast<double>();
-      normal_matrix += weight * jacobian * jacobian.transpose();
-      rhs -= weight * jacobian * residual;
-      ++pairs;
+      const double residual = n->dot(moved - p);
+      step.Add(moved, p, *n, std::min(1.0, 0.01 / std::max(1e-9, std::fabs(residual))));
     }
-    if (pairs < 100) return motion;
-    const Eigen::Matrix<double, 6, 1> step = normal_matrix.ldlt().solve(rhs);
-    if (!step.allFinite()) return motion;
-    const Eigen::Vector3d omega = step.head<3>();
-    Eigen::Isometry3f increment = Eigen::Isometry3f::Identity();
-    if (omega.norm() > 0) {
-      increment.linear() =
-          Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix().cast<float>();
-    }
-    increment.translation() = step.tail<3>().cast<float>();
-    estimate = increment * estimate;
-    if (omega.norm() < 1e-6 && step.tail<3>().norm() < 1e-6) break;
+    if (step.pairs() < 100) return motion;
+    const std::optional<PointToPlaneStep::Increment> increment = step.Solve();
+    if (!increment) return motion;
+    estimate = increment->motion * estimate;
+    if (increment->rotation_rad < 1e-6 && increment->translation_m < 1e-6) break;
   }
   motion.converged = true;
   motion.before_from_after = estimate;
