@@ -1,0 +1,51 @@
+#!/usr/bin/env python3
+"""Each ablation of scripts/results-sim.sh against the default classifier with the choice
+map, replication by replication (the same seed per replication for both): the mean
+difference of the final balanced accuracy (thresholded, as docs/results.md's "accuracy"),
+its range, and in how many replications the default did better and worse by more than
+0.005 (closer is a tie: the last iteration's accuracy moves by more from one push).
+
+  scripts/results-sim-paired.py [KEEP_DIR]   (default docs/results/kinect)
+"""
+import json
+import os
+import sys
+
+ABLATIONS = ("alpha1", "paper2018", "random")
+TIE = 0.005
+
+
+def final_accuracies(root, name):
+    path = os.path.join(root, name, "summary.json")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        summary = json.load(f)
+    return [r["final"]["thresholded_soft"]["accuracy"] if r.get("final") else None
+            for r in summary["replications"]]
+
+
+def main():
+    root = sys.argv[1] if len(sys.argv) > 1 else "docs/results/kinect"
+    with open(os.path.join(root, "experiments.txt")) as f:
+        setups = [n for n in (line.strip() for line in f) if n and "-" not in n]
+    print("| setup | ablation | mean difference (ablation − default) | range "
+          "| default better / worse |")
+    print("|---|---|---|---|---|")
+    for setup in setups:
+        default = final_accuracies(root, setup)
+        for ablation in ABLATIONS:
+            other = final_accuracies(root, f"{setup}-{ablation}")
+            if default is None or other is None:
+                continue
+            pairs = [(a, d) for a, d in zip(other, default) if a is not None and d is not None]
+            differences = [a - d for a, d in pairs]
+            better = sum(d - a > TIE for a, d in pairs)
+            worse = sum(a - d > TIE for a, d in pairs)
+            print(f"| {setup} | {ablation} | {sum(differences) / len(differences):+.3f} "
+                  f"| {min(differences):+.2f} to {max(differences):+.2f} "
+                  f"| {better} / {worse} of {len(pairs)} |")
+
+
+if __name__ == "__main__":
+    main()
