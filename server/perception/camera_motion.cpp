@@ -93,11 +93,9 @@ CameraMotion ProjectiveIcp(const Cloud& before, const Intrinsics& k, const Cloud
     PointToPlaneStep step;
     for (const Eigen::Vector3f& q : source) {
       const Eigen::Vector3f moved = estimate * q;
-      if (!(moved.z() > 0)) continue;
-      const double u = std::round(k.fx * moved.x() / moved.z() + k.cx);
-      const double v = std::round(k.fy * moved.y() / moved.z() + k.cy);
-      if (!(u >= 0 && v >= 0 && u < before.width() && v < before.height())) continue;
-      const auto pu = static_cast<std::uint32_t>(u), pv = static_cast<std::uint32_t>(v);
+      const std::optional<Pixel> pixel = PixelOf(k, moved, before.width(), before.height());
+      if (!pixel) continue;
+      const auto [pu, pv] = *pixel;
       const CloudPoint target = before.point(static_cast<std::size_t>(pv) * before.width() + pu);
       const Eigen::Vector3f p(target.x, target.y, target.z);
       if (!p.allFinite() || (moved - p).norm() > max_distance) continue;
@@ -187,6 +185,15 @@ CameraMotion EstimateCameraMotion(const Cloud& before, const std::optional<Intri
   return motion;
 }
 
+std::optional<Pixel> PixelOf(const Intrinsics& k, const Eigen::Vector3f& point, std::uint32_t width,
+                             std::uint32_t height) {
+  if (!(point.z() > 0)) return std::nullopt;
+  const double u = std::round(k.fx * point.x() / point.z() + k.cx);
+  const double v = std::round(k.fy * point.y() / point.z() + k.cy);
+  if (!(u >= 0 && v >= 0 && u < width && v < height)) return std::nullopt;
+  return Pixel{static_cast<std::uint32_t>(u), static_cast<std::uint32_t>(v)};
+}
+
 std::vector<SeenPoint> ReprojectInto(const Cloud& after, const Eigen::Isometry3f& motion,
                                      const Intrinsics& k, std::uint32_t width,
                                      std::uint32_t height) {
@@ -196,11 +203,9 @@ std::vector<SeenPoint> ReprojectInto(const Cloud& after, const Eigen::Isometry3f
   for (const pcl::PointXYZRGBA& p : after.pcl()) {
     if (!pcl::isFinite(p)) continue;
     const Eigen::Vector3f q = motion * Eigen::Vector3f(p.x, p.y, p.z);
-    if (!(q.z() > 0)) continue;
-    const double u = std::round(k.fx * q.x() / q.z() + k.cx);
-    const double v = std::round(k.fy * q.y() / q.z() + k.cy);
-    if (!(u >= 0 && v >= 0 && u < width && v < height)) continue;
-    SeenPoint& pixel = image[static_cast<std::size_t>(v) * width + static_cast<std::size_t>(u)];
+    const std::optional<Pixel> at = PixelOf(k, q, width, height);
+    if (!at) continue;
+    SeenPoint& pixel = image[static_cast<std::size_t>(at->v) * width + at->u];
     // NaN or farther: the nearer point hides it.
     if (!(pixel.position.z() <= q.z())) pixel = {q, {p.r, p.g, p.b}};
   }

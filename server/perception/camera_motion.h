@@ -42,6 +42,14 @@ CameraMotion EstimateCameraMotion(const Cloud& before, const Cloud& after, std::
 CameraMotion EstimateCameraMotion(const Cloud& before, const std::optional<Intrinsics>& intrinsics,
                                   const Cloud& after, std::size_t samples, float max_distance);
 
+// The pixel a point (in the camera's frame) projects to, rounded to the nearest; nullopt
+// behind the camera or outside a width x height image.
+struct Pixel {
+  std::uint32_t u, v;
+};
+std::optional<Pixel> PixelOf(const Intrinsics& k, const Eigen::Vector3f& point, std::uint32_t width,
+                             std::uint32_t height);
+
 // A point of a re-projected frame, with its colour.
 struct SeenPoint {
   Eigen::Vector3f position;

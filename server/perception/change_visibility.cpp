@@ -244,13 +244,11 @@ SeenCounts CarriedCounts(const std::vector<ObjectPoint>& points, std::size_t tar
   carried.points = target_count;
   for (std::size_t i = 0; i < target_count; ++i) {
     const Eigen::Vector3f q = motion * Position(points[i].point);
-    if (!(q.z() > 0)) continue;
-    const double u = std::round(k.fx * q.x() / q.z() + k.cx);
-    const double v = std::round(k.fy * q.y() / q.z() + k.cy);
-    if (!(u >= 0 && v >= 0 && u < before.width() && v < before.height())) continue;
+    const std::optional<Pixel> at = PixelOf(k, q, before.width(), before.height());
+    if (!at) continue;
     CloudPoint moved = points[i].point;
     moved.x = q.x(), moved.y = q.y(), moved.z = q.z();
-    const auto pixel = static_cast<std::size_t>(v) * before.width() + static_cast<std::size_t>(u);
+    const std::size_t pixel = static_cast<std::size_t>(at->v) * before.width() + at->u;
     carried.Add(
         SeenAlongRay(seen, before.width(), before.height(), pixel, moved, Tolerance(config, q.z()),
                      config.search_window, gain, config.colour_tolerance),
