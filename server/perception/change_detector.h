@@ -39,8 +39,10 @@ struct ChangeEvidence {
   std::size_t object_vacated_beyond_motion_points = 0;
   // When the object showed a move that the target's own points did not: the rigid motion
   // fitted to the object's supervoxels that moved (object_motion.h), if one fitted, and
-  // what the after frame shows where it carries the target's points. A target seen through
-  // there did not go with its object (a body flush against the pushed one), and is not moved.
+  // what the after frame shows where it carries the target's points. A target shown there
+  // worse than at its old place (fewer than half as many still there, or seen through at a
+  // larger share, z >= 3) did not go with its object (a body flush against the pushed one),
+  // and is not moved.
   bool object_motion_fitted = false;
   double object_motion_translation_m = 0;
   double object_motion_rotation_deg = 0;
