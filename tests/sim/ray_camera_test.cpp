@@ -32,6 +32,8 @@ std::string BoxWallBall() {
 const CameraPoint& At(const CameraFrame& frame, int u, int v) {
   return frame.points[static_cast<std::size_t>(v) * frame.width + u];
 }
+// A point of a temporary frame would dangle once the statement ends (ASan found one).
+const CameraPoint& At(CameraFrame&& frame, int u, int v) = delete;
 std::int32_t IdAt(const CameraFrame& frame, int u, int v) {
   return frame.body_ids[static_cast<std::size_t>(v) * frame.width + u];
 }
@@ -47,7 +49,8 @@ TEST(RayCamera, FramesAreOrganizedAtTheCamerasSize) {
 
 TEST(RayCamera, TheOpticalAxisHitsTheBoxFaceAtItsDistance) {
   auto scene = LoadOrDie(BoxWallBall());
-  const CameraPoint& p = At(scene->Capture(), 32, 24);
+  const CameraFrame frame = scene->Capture();
+  const CameraPoint& p = At(frame, 32, 24);
   EXPECT_NEAR(p.x, 0.0, 1e-6);
   EXPECT_NEAR(p.y, 0.0, 1e-6);
   EXPECT_NEAR(p.z, 1.0, 1e-6);
