@@ -9,6 +9,7 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "client/reasoned_status.h"
@@ -160,6 +161,13 @@ class FlakyService final : public v1::RelevanceService::Service {
 
 class ClientAgainstFlakyServer : public ::testing::Test {
  protected:
+  // The fixture owns the service, so that it outlives the server's shutdown in TearDown:
+  // a call the client gave up on may still be running in it (UBSan found a test's local
+  // service destroyed under a handler still sleeping in it).
+  template <typename... Args>
+  FlakyService& MakeService(Args&&... args) {
+    return service_.emplace(std::forward<Args>(args)...);
+  }
   void Start(FlakyService* service, ClientOptions options = {}) {
     grpc::ServerBuilder builder;
     int port = 0;
@@ -176,12 +184,13 @@ class ClientAgainstFlakyServer : public ::testing::Test {
   }
 
   const SessionHandle session_{"s", "t"};
+  std::optional<FlakyService> service_;  // declared before server_: destroyed after it
   std::unique_ptr<grpc::Server> server_;
   std::unique_ptr<RelevanceClient> client_;
 };
 
 TEST_F(ClientAgainstFlakyServer, RetriesAReadThroughABrokenConnection) {
-  FlakyService service(2, grpc::Status(grpc::StatusCode::UNAVAILABLE, "reset"));
+  FlakyService& service = MakeService(2, grpc::Status(grpc::StatusCode::UNAVAILABLE, "reset"));
   Start(&service);
   v1::GetSessionResponse response;
   EXPECT_TRUE(client_->GetSession(session_, &response).ok());
@@ -190,7 +199,7 @@ TEST_F(ClientAgainstFlakyServer, RetriesAReadThroughABrokenConnection) {
 }
 
 TEST_F(ClientAgainstFlakyServer, DoesNotRepeatComputeMapsThatMayHaveRun) {
-  FlakyService service(1, grpc::Status(grpc::StatusCode::UNAVAILABLE, "reset"));
+  FlakyService& service = MakeService(1, grpc::Status(grpc::StatusCode::UNAVAILABLE, "reset"));
   Start(&service);
   v1::ComputeMapsResponse response;
   EXPECT_EQ(client_->ComputeMaps(session_, v1::Cloud{}, &response).error_code(),
@@ -199,7 +208,7 @@ TEST_F(ClientAgainstFlakyServer, DoesNotRepeatComputeMapsThatMayHaveRun) {
 }
 
 TEST_F(ClientAgainstFlakyServer, RepeatsComputeMapsAfterABrokenConnectionWhenAskedTo) {
-  FlakyService service(1, grpc::Status(grpc::StatusCode::UNAVAILABLE, "reset"));
+  FlakyService& service = MakeService(1, grpc::Status(grpc::StatusCode::UNAVAILABLE, "reset"));
   Start(&service);
   v1::ComputeMapsResponse response;
   EXPECT_TRUE(client_
@@ -210,7 +219,7 @@ TEST_F(ClientAgainstFlakyServer, RepeatsComputeMapsAfterABrokenConnectionWhenAsk
 }
 
 TEST_F(ClientAgainstFlakyServer, RepeatsComputeMapsThatABusyServerTurnedAway) {
-  FlakyService service(2, kThreadpoolExhausted);
+  FlakyService& service = MakeService(2, kThreadpoolExhausted);
   Start(&service);
   v1::ComputeMapsResponse response;
   EXPECT_TRUE(client_->ComputeMaps(session_, v1::Cloud{}, &response).ok());
@@ -218,8 +227,8 @@ TEST_F(ClientAgainstFlakyServer, RepeatsComputeMapsThatABusyServerTurnedAway) {
 }
 
 TEST_F(ClientAgainstFlakyServer, WaitsOutTheServersPushbackBeforeRepeating) {
-  FlakyService service(1, grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED, "busy"),
-                       milliseconds(0), 150);
+  FlakyService& service = MakeService(1, grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED, "busy"),
+                                      milliseconds(0), 150);
   Start(&service);
   v1::ComputeMapsResponse response;
   const auto start = std::chrono::steady_clock::now();
@@ -229,7 +238,8 @@ TEST_F(ClientAgainstFlakyServer, WaitsOutTheServersPushbackBeforeRepeating) {
 }
 
 TEST_F(ClientAgainstFlakyServer, RepeatsWhatTheServerTurnedAwayAsBusyWithoutAPushback) {
-  FlakyService service(2, ReasonedStatus(grpc::StatusCode::RESOURCE_EXHAUSTED, "busy", "BUSY"));
+  FlakyService& service =
+      MakeService(2, ReasonedStatus(grpc::StatusCode::RESOURCE_EXHAUSTED, "busy", "BUSY"));
   Start(&service);
   v1::ComputeMapsResponse response;
   EXPECT_TRUE(client_->ComputeMaps(session_, v1::Cloud{}, &response).ok());
@@ -237,7 +247,7 @@ TEST_F(ClientAgainstFlakyServer, RepeatsWhatTheServerTurnedAwayAsBusyWithoutAPus
 }
 
 TEST_F(ClientAgainstFlakyServer, ARetriedOutcomeKeepsOneGeneratedRequestId) {
-  FlakyService service(2, grpc::Status(grpc::StatusCode::UNAVAILABLE, "reset"));
+  FlakyService& service = MakeService(2, grpc::Status(grpc::StatusCode::UNAVAILABLE, "reset"));
   Start(&service);
   v1::PostOutcomeResponse response;
   ASSERT_TRUE(client_->PostOutcome(session_, 1, 2, v1::LABEL_MOVEABLE, "", &response).ok());
@@ -249,7 +259,7 @@ TEST_F(ClientAgainstFlakyServer, ARetriedOutcomeKeepsOneGeneratedRequestId) {
 }
 
 TEST_F(ClientAgainstFlakyServer, GivesUpAfterTheAttemptLimit) {
-  FlakyService service(100, grpc::Status(grpc::StatusCode::UNAVAILABLE, "down"));
+  FlakyService& service = MakeService(100, grpc::Status(grpc::StatusCode::UNAVAILABLE, "down"));
   ClientOptions options;
   options.retry.max_attempts = 3;
   Start(&service, options);
@@ -259,7 +269,7 @@ TEST_F(ClientAgainstFlakyServer, GivesUpAfterTheAttemptLimit) {
 }
 
 TEST_F(ClientAgainstFlakyServer, TheDeadlineBoundsTheWholeCall) {
-  FlakyService service(0, grpc::Status::OK, milliseconds(300));
+  FlakyService& service = MakeService(0, grpc::Status::OK, milliseconds(300));
   ClientOptions options;
   options.deadline = milliseconds(50);
   Start(&service, options);
