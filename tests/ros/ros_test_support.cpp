@@ -1,6 +1,7 @@
 #include "ros_test_support.h"
 
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -87,17 +88,24 @@ int ChildProcess::Stop() {
 
 namespace {
 
-// The master and its ROS_HOME, for the test binary's life.
-class RosEnvironment {
+// The master and its ROS_HOME, for the test binary's life: a GoogleTest environment, torn
+// down when the tests have run and before the process exits. Torn down by a static's
+// destructor instead, it ran after the statics ros::init had made were destroyed: ASan
+// found ros::ServiceManager reading this node's freed name while the spinner's node
+// handle shut it down.
+class RosEnvironment final : public ::testing::Environment {
  public:
   RosEnvironment() {
     char home_template[] = "/tmp/relmap-ros-test-XXXXXX";
     if (::mkdtemp(home_template) != nullptr) home_ = home_template;
   }
-  ~RosEnvironment() {
+  void TearDown() override {
+    if (spinner_) spinner_->stop();
+    spinner_.reset();
     if (ros::isStarted()) ros::shutdown();
     master_.reset();
     if (!home_.empty()) std::filesystem::remove_all(home_);
+    home_.clear();
   }
   RosEnvironment(const RosEnvironment&) = delete;
   RosEnvironment& operator=(const RosEnvironment&) = delete;
@@ -136,8 +144,13 @@ class RosEnvironment {
 }  // namespace
 
 std::string StartRosOnce() {
-  static RosEnvironment environment;
-  static const std::string failure = environment.Start();
+  // GoogleTest owns the environment and calls its TearDown at the end of the run, also
+  // for one added while the tests run.
+  static const std::string failure = [] {
+    auto* environment = new RosEnvironment;
+    ::testing::AddGlobalTestEnvironment(environment);
+    return environment->Start();
+  }();
   return failure;
 }
 
