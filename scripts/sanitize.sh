@@ -32,6 +32,7 @@ case "$mode" in
     selection=(-LE style)
     export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
     export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+    export LSAN_OPTIONS="suppressions=$PWD/scripts/sanitizers/lsan.supp"
     ;;
   thread)
     build=build-tsan
