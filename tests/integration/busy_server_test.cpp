@@ -79,10 +79,11 @@ SentAtOnce SendCloudsAtOnce(const std::vector<std::string>& server_flags) {
   for (int i = 0; i < kClients; ++i) {
     clients.emplace_back([&] {
       v1::ComputeMapsResponse response;
-      const grpc::Status status =
-          client.ComputeMaps(session, cloud, &response, client::PointLabels::kOmit);
-      EXPECT_TRUE(status.ok()) << status.error_message();
-      if (status.ok()) ++served;
+      // Whether every call must be served is the caller's to say: one the server keeps
+      // turning away may run out of the client's repeats on a slow machine.
+      if (client.ComputeMaps(session, cloud, &response, client::PointLabels::kOmit).ok()) {
+        ++served;
+      }
     });
   }
   for (std::thread& t : clients) t.join();
@@ -94,7 +95,11 @@ TEST(BusyServer, ACallWaitsForItsTurnUpToTheLongestWait) {
   // each waits its turn; with 1 ms, each waiting call is turned away.
   const std::vector<std::string> queue = {"--max-concurrent-frames", "1", "--max-queued-frames",
                                           std::to_string(kClients)};
-  EXPECT_EQ(SendCloudsAtOnce(queue).turned_away, 0u);
+  const SentAtOnce patient = SendCloudsAtOnce(queue);
+  EXPECT_EQ(patient.served, kClients);
+  EXPECT_EQ(patient.turned_away, 0u);
+  // Turned away, the calls are repeated; whether all are served in the client's repeats
+  // depends on how long a frame takes (under TSan, ~4 s each: some were not).
   std::vector<std::string> impatient = queue;
   impatient.insert(impatient.end(), {"--max-frame-wait-ms", "1"});
   EXPECT_GT(SendCloudsAtOnce(impatient).turned_away, 0u);
