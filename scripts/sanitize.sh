@@ -9,9 +9,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-address}
 shift || true
-./scripts/install-deps.sh
 
 targets=()
+extra_packages=()
+link_flags=""
 case "$mode" in
   address)
     build=build-asan
@@ -42,20 +43,47 @@ case "$mode" in
     # the PostgreSQL store and every test of the real server process (its gRPC worker
     # threads). Only their programs are built: the unit tests' forty-odd others would
     # double the build for nothing TSan looks at.
-    # Not the ROS tests: the ROS bridge is not among the programs built here.
-    selection=(-L "threads|service|integration|cluster|postgres" -LE ros)
+    # Not the ROS tests: the ROS bridge is not among the programs built here. Not the
+    # memory soak: it bounds the server's resident memory, which under TSan is the
+    # sanitizer's (shadow memory, and an allocator that keeps what is freed).
+    selection=(-L "threads|service|integration|cluster|postgres" -LE "ros|soak")
     targets=(relmap-server relmap relmap-robot relmap-load session_test session_store_test
       postgres_session_store_test client_test robot_adapter_test service_in_process_test
       server_integration_test client_integration_test cluster_test robot_end_to_end_test
       sim_runner_end_to_end_test)
+    # Two of Debian's libraries are replaced, for our programs only, by an RPATH searched
+    # before the system's for every library they load (DT_RPATH, not RUNPATH, so that it
+    # also serves PCL's and gRPC's own dependencies). Not LD_LIBRARY_PATH: the tests' other
+    # processes (Python's grpc, nginx, PostgreSQL) must keep Debian's, and a TSan-built
+    # libgrpc cannot be loaded into an uninstrumented Python.
+    # - OpenMP: LLVM's libomp, which serves GCC's GOMP calls, with its Archer tool. Archer
+    #   tells TSan where a parallel region's fork, barriers and join order memory, which
+    #   libgomp (not instrumented, futex barriers) cannot: with libgomp every region
+    #   reports the master's stack variables its workers read. ignore_noninstrumented_modules
+    #   keeps libomp's own uninstrumented locks out of the reports, as Archer asks.
+    # - gRPC and Abseil built with TSan (scripts/sanitizers/build-tsan-grpc.sh), same
+    #   sonames: with Debian's, TSan cannot see gRPC's synchronisation and every server and
+    #   client test fails on its reports.
+    extra_packages=(libomp-14-dev)
+    openmp=$PWD/$build/openmp
+    mkdir -p "$openmp"
+    ln -sf /usr/lib/llvm-14/lib/libomp.so.5 "$openmp/libgomp.so.1"
+    export OMP_TOOL_LIBRARIES=/usr/lib/llvm-14/lib/libarcher.so
+    deps=$PWD/build-tsan-deps/lib
+    if [ ! -f "$deps/libgrpc++.so.1.51" ]; then
+      echo "sanitize thread: no TSan-built gRPC in $deps; the gRPC tests will report" \
+        "inside Debian's (run scripts/sanitizers/build-tsan-grpc.sh first)" >&2
+    fi
+    link_flags="-Wl,--disable-new-dtags,-rpath,$openmp:$deps"
     # Exported before the build: gtest_discover_tests runs each program at build time.
-    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/scripts/sanitizers/tsan.supp"
+    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:ignore_noninstrumented_modules=1:suppressions=$PWD/scripts/sanitizers/tsan.supp"
     ;;
   *)
     echo "usage: scripts/sanitize.sh address|thread [ctest arguments]" >&2
     exit 2
     ;;
 esac
+./scripts/install-deps.sh "${extra_packages[@]}"
 
 start=$(date +%s)
 # -g1: line tables for the reports' stacks at a fraction of full debug info's build time.
@@ -64,7 +92,7 @@ start=$(date +%s)
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache \
   -DCMAKE_CXX_FLAGS="$flags -g1" -DCMAKE_C_FLAGS="$flags -g1" \
-  -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags"
+  -DCMAKE_EXE_LINKER_FLAGS="$flags $link_flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags"
 # Two jobs: a sanitized PCL translation unit takes over 1 GB of compiler memory.
 cmake --build "$build" -j 2 ${targets:+--target "${targets[@]}"}
 built=$(date +%s)
