@@ -13,8 +13,8 @@
 # and Debian patches from deb.debian.org, checked against the .dsc's SHA-256, built as
 # shared libraries with -fsanitize=thread and Debian's options. The libraries keep
 # Debian's sonames and Abseil's inline namespace, so the programs of build-tsan/ (which
-# compile against Debian's headers) load them in place of Debian's through
-# LD_LIBRARY_PATH=<prefix>/lib, which scripts/sanitize.sh sets when the folder exists.
+# compile against Debian's headers) load them in place of Debian's through the RPATH
+# scripts/sanitize.sh links them with (<prefix>/lib, the default prefix only).
 # Only the libraries relmap loads are built (gRPC's C++ and reflection libraries and what
 # they need, and the C++ plugin that generates the reflection service): no other plugin,
 # no tests.
