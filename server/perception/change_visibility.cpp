@@ -24,10 +24,6 @@ namespace {
 
 Eigen::Vector3f Position(const CloudPoint& p) { return {p.x, p.y, p.z}; }
 
-bool Finite(const CloudPoint& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
-
 // How far apart two observations of one static surface point at depth z may be: both are
 // noisy (sqrt 2 sigma) and each is quantised (a step, at worst).
 double Tolerance(const ChangeDetectorConfig& config, double z) {
@@ -64,7 +60,7 @@ Eigen::Array3d ColourGain(const Cloud& before, const std::vector<SeenPoint>& aft
   for (std::size_t i = 0; i < after.size(); i += 8) {
     const CloudPoint p = before.point(i);
     const Eigen::Vector3f& q = after[i].position;
-    if (!Finite(p) || !q.allFinite()) continue;
+    if (!pcd::HasPosition(p) || !q.allFinite()) continue;
     if (std::fabs(q.z() - p.z) > Tolerance(config, p.z)) continue;
     sum_before += Eigen::Array3d(p.r, p.g, p.b);
     sum_after += Eigen::Array3d(after[i].rgb[0], after[i].rgb[1], after[i].rgb[2]);
@@ -120,7 +116,7 @@ double SupportedShare(const Cloud& before, const std::vector<SeenPoint>& after,
   std::size_t points = 0, supported = 0;
   for (std::size_t i = 0; i < before.size(); i += 16) {
     const CloudPoint p = before.point(i);
-    if (!Finite(p)) continue;
+    if (!pcd::HasPosition(p)) continue;
     ++points;
     supported += SeenAlongRay(after, before.width(), before.height(), i, p, Tolerance(config, p.z),
                               config.search_window, Eigen::Array3d::Ones(), 0) == Seen::kSupported;
@@ -137,7 +133,7 @@ class NearbyAfterPoints {
       : inverse_(1.0f / cell), cell_(cell) {
     for (std::size_t i = 0; i < after.size(); ++i) {
       const CloudPoint q = after.point(i);
-      if (!Finite(q)) continue;
+      if (!pcd::HasPosition(q)) continue;
       const Eigen::Vector3f position = motion * Position(q);
       if ((position.array() < lo.array()).any() || (position.array() > hi.array()).any()) {
         continue;
@@ -216,7 +212,7 @@ void AppendFinitePoints(const Cloud& before, const Supervoxel& s, std::size_t pa
                         std::vector<ObjectPoint>& points) {
   for (const std::int32_t i : s.point_indices) {
     const CloudPoint p = before.point(static_cast<std::size_t>(i));
-    if (Finite(p)) points.push_back({static_cast<std::size_t>(i), p, part});
+    if (pcd::HasPosition(p)) points.push_back({static_cast<std::size_t>(i), p, part});
   }
 }
 

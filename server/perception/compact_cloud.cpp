@@ -12,10 +12,6 @@
 namespace relmap::perception {
 namespace {
 
-bool Finite(const CloudPoint& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
-
 std::uint32_t Bits(float v) { return std::bit_cast<std::uint32_t>(v); }
 float FromBits(std::uint32_t b) { return std::bit_cast<float>(b); }
 
@@ -66,7 +62,7 @@ CompactCloud CompactCloud::Of(const Cloud& cloud, bool keep_colour) {
   z.reserve(cloud.valid_points());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const CloudPoint p = cloud.point(i);
-    if (!Finite(p)) continue;
+    if (!pcd::HasPosition(p)) continue;
     compact.holes_[i / 8] = static_cast<char>(compact.holes_[i / 8] | (1 << (i % 8)));
     const auto [px, py] = predictor.XY(i, p.z);
     x.push_back(Residual(p.x, px));
