@@ -3,14 +3,13 @@
 #include "ode_bodies.h"
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "ode_math.h"
 
 namespace relmap::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A non-composite shape and where it sits in its body's (object's) frame.
 struct Part {
@@ -66,9 +65,10 @@ double Volume(const Body& shape) {
   const std::string& s = shape.shape();
   if (s == "box") return shape.size().x() * shape.size().y() * shape.size().z();
   const double r = shape.radius();
-  if (s == "sphere") return 4.0 / 3.0 * kPi * r * r * r;
-  if (s == "cylinder") return kPi * r * r * shape.length();
-  if (s == "capsule") return kPi * r * r * shape.length() + 4.0 / 3.0 * kPi * r * r * r;
+  using std::numbers::pi;
+  if (s == "sphere") return 4.0 / 3.0 * pi * r * r * r;
+  if (s == "cylinder") return pi * r * r * shape.length();
+  if (s == "capsule") return pi * r * r * shape.length() + 4.0 / 3.0 * pi * r * r * r;
   double volume = 0;
   Eigen::Vector3d centroid;
   Eigen::Matrix3d inertia;

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <optional>
 
@@ -14,7 +15,6 @@
 namespace relmap::sim {
 namespace {
 
-constexpr double kTwoPi = 6.28318530717958647692;
 constexpr int kDirections = 16;
 // How far below the target to look for the supporting static surface (m).
 constexpr double kSupportSearch = 3.0;
@@ -55,7 +55,7 @@ ShapeSymmetry SymmetryOf(const SimBody& body) {
 // The candidate directions, as angles: evenly spaced, rotated by a random
 // offset, in a random order.
 std::vector<double> ApproachAngles(SeededRandom& random) {
-  const double offset = random.Uniform(0, kTwoPi / kDirections);
+  const double offset = random.Uniform(0, 2 * std::numbers::pi / kDirections);
   std::vector<int> order(kDirections);
   std::iota(order.begin(), order.end(), 0);
   for (int i = kDirections - 1; i > 0; --i) {  // Fisher-Yates
@@ -63,7 +63,7 @@ std::vector<double> ApproachAngles(SeededRandom& random) {
   }
   std::vector<double> angles;
   angles.reserve(order.size());
-  for (int k : order) angles.push_back(offset + kTwoPi * k / kDirections);
+  for (int k : order) angles.push_back(offset + 2 * std::numbers::pi * k / kDirections);
   return angles;
 }
 

@@ -2,13 +2,13 @@
 #include "scene_dynamics.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "ode_math.h"
 
 namespace relmap::sim {
 namespace {
 
-constexpr double kTwoPi = 6.28318530717958647692;
 constexpr double kRestWindowSeconds = 0.05;
 constexpr int kSpawnAttempts = 100;
 
@@ -34,7 +34,9 @@ Eigen::Isometry3d DrawPose(const SpawnRegion& spawn, SeededRandom& random) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   switch (ResolveSpawnOrientation(spawn)) {
     case SpawnOrientation::kYaw:
-      pose.linear() = Eigen::AngleAxisd(random.Uniform(0, kTwoPi), Eigen::Vector3d::UnitZ()) * base;
+      pose.linear() =
+          Eigen::AngleAxisd(random.Uniform(0, 2 * std::numbers::pi), Eigen::Vector3d::UnitZ()) *
+          base;
       break;
     case SpawnOrientation::kFull:
       pose.linear() = random.Rotation().toRotationMatrix();

@@ -2,12 +2,12 @@
 #include "scene_settings.h"
 
 #include <cmath>
+#include <numbers>
 
 namespace relmap::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadiansPerDegree = kPi / 180.0;
+constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
 // Kinect v1 (the paper's sensor): fx = fy = 525 px at 640 px wide.
 constexpr double kKinectFocalAt640 = 525.0;
 

@@ -2,14 +2,11 @@
 #include "seeded_random.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "common/random.h"
 
 namespace relmap::sim {
-namespace {
-constexpr double kTwoPi = 6.28318530717958647692;
-}  // namespace
-
 SeededRandom::SeededRandom(std::uint64_t seed, std::uint64_t stream)
     : engine_(SplitMix64At(seed ^ SplitMix64At(stream))) {}
 
@@ -28,14 +25,15 @@ std::uint64_t SeededRandom::Below(std::uint64_t n) {
 double SeededRandom::Gaussian() {
   const double u1 = 1.0 - Uniform01();  // (0, 1]: log is finite
   const double u2 = Uniform01();
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * std::numbers::pi * u2);
 }
 
 Eigen::Quaterniond SeededRandom::Rotation() {
   const double u1 = Uniform01(), u2 = Uniform01(), u3 = Uniform01();
   const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-  return Eigen::Quaterniond(a * std::sin(kTwoPi * u2), a * std::cos(kTwoPi * u2),
-                            b * std::sin(kTwoPi * u3), b * std::cos(kTwoPi * u3));
+  const double turn2 = 2 * std::numbers::pi * u2, turn3 = 2 * std::numbers::pi * u3;
+  return Eigen::Quaterniond(a * std::sin(turn2), a * std::cos(turn2), b * std::sin(turn3),
+                            b * std::cos(turn3));
 }
 
 }  // namespace relmap::sim

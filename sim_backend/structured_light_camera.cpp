@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <thread>
 #include <vector>
 
@@ -15,7 +16,6 @@
 namespace relmap::sim {
 namespace {
 
-constexpr double kTwoPi = 6.28318530717958647692;
 // Rays are cast a little past max_range so that depths rounded down into range
 // still have a surface behind them.
 constexpr double kCastMargin = 1.1;
@@ -47,7 +47,7 @@ class PixelDraws {
   Eigen::Vector2d Gaussians(std::uint64_t slot) const {
     const double u1 = 1.0 - Uniform01(slot);  // (0, 1]: log is finite
     const double radius = std::sqrt(-2.0 * std::log(u1));
-    const double angle = kTwoPi * Uniform01(slot + 1);
+    const double angle = 2 * std::numbers::pi * Uniform01(slot + 1);
     return {radius * std::cos(angle), radius * std::sin(angle)};
   }
 

@@ -4,11 +4,10 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 namespace relmap::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector3d ToUnit(const Rgb8& c) { return Eigen::Vector3d(c[0], c[1], c[2]) / 255.0; }
 
@@ -52,7 +51,7 @@ double WoodGrain(const Eigen::Vector3d& p, double ring_spacing) {
   const Eigen::Vector3d q(p.x() * 0.15 * stretch, p.y() * stretch, p.z() * stretch);
   const double radius = std::hypot(p.y() + 7.3 * ring_spacing, p.z() - 31.0 * ring_spacing);
   const double rings = radius / ring_spacing + 1.6 * ValueNoise(q * 0.35) + 0.3 * ValueNoise(q);
-  const double profile = 0.5 + 0.5 * std::sin(2.0 * kPi * rings);
+  const double profile = 0.5 + 0.5 * std::sin(2.0 * std::numbers::pi * rings);
   return profile * profile * profile * (0.75 + 0.25 * ValueNoise(q * 2.0));
 }
 

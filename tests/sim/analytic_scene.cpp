@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "common/random.h"
 
@@ -12,7 +13,6 @@ namespace relmap::sim::testing {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-constexpr double kPi = 3.14159265358979323846;
 // Where the moveable objects spawn (x, y centre ranges, metres).
 constexpr float kSpawnX = 0.35f, kSpawnY = 0.25f;
 // Objects keep this much table between them.
@@ -194,9 +194,9 @@ PushReport AnalyticScene::Push(const Eigen::Vector3f& target, std::uint64_t seed
   if (!body.moveable) return report;
   // The push direction is drawn; a blocked one turns by 45° until one is free.
   const Eigen::Vector3f from = body.centre;
-  const double angle = 2 * kPi * Uniforms(seed).Next();
+  const double angle = 2 * std::numbers::pi * Uniforms(seed).Next();
   for (int turn = 0; turn < 8; ++turn) {
-    const double a = angle + turn * kPi / 4;
+    const double a = angle + turn * std::numbers::pi / 4;
     body.centre = from + kPushDistance * Eigen::Vector3f(static_cast<float>(std::cos(a)),
                                                          static_cast<float>(std::sin(a)), 0);
     if (FitsAt(nearest)) {

@@ -5,11 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 namespace relmap::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The Kinect v1's figures, typed here from the papers rather than taken from the
 // code under test.
@@ -35,16 +34,16 @@ TEST(KinectNoiseModel, AxialSigmaGrowsWithTheSquareOfDepthFromHalfAMetre) {
 
 TEST(KinectNoiseModel, AxialSigmaAddsTheGrazingTermAtObliqueAngles) {
   // θ = 45°: θ / (π/2 - θ) = 1, so the term is 0.0001 / sqrt(z): at z = 1, 0.0001 m.
-  EXPECT_NEAR(AxialSigma(Published(), 1.0, kPi / 4), 0.001884 + 0.0001, 1e-12);
+  EXPECT_NEAR(AxialSigma(Published(), 1.0, std::numbers::pi / 4), 0.001884 + 0.0001, 1e-12);
   // At z = 4: 0.0001 / 2 = 0.00005 m on top of 0.0012 + 0.0019 * 12.96 = 0.025824.
-  EXPECT_NEAR(AxialSigma(Published(), 4.0, kPi / 4), 0.025824 + 0.00005, 1e-12);
+  EXPECT_NEAR(AxialSigma(Published(), 4.0, std::numbers::pi / 4), 0.025824 + 0.00005, 1e-12);
 }
 
 TEST(KinectNoiseModel, LateralSigmaIsInPixelsOfTheImageSize) {
   EXPECT_NEAR(LateralSigmaPixels(Published(), 0.0, 640), 0.8, 1e-12);
   // θ = 45°: 0.8 + 0.035 * 1 = 0.835 px at 640 wide, half that at 320.
-  EXPECT_NEAR(LateralSigmaPixels(Published(), kPi / 4, 640), 0.835, 1e-12);
-  EXPECT_NEAR(LateralSigmaPixels(Published(), kPi / 4, 320), 0.4175, 1e-12);
+  EXPECT_NEAR(LateralSigmaPixels(Published(), std::numbers::pi / 4, 640), 0.835, 1e-12);
+  EXPECT_NEAR(LateralSigmaPixels(Published(), std::numbers::pi / 4, 320), 0.4175, 1e-12);
 }
 
 TEST(KinectNoiseModel, DepthStepsAreAboutSevenCentimetresAtFiveMetres) {
