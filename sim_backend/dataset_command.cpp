@@ -19,11 +19,6 @@ namespace {
 
 constexpr char kCommand[] = "relmap-sim dataset";
 
-int Fail(int code, const std::string& message) {
-  std::fprintf(stderr, "%s: %s\n", kCommand, message.c_str());
-  return code;
-}
-
 StatusOr<std::unique_ptr<SimulatedScene>> LoadScene(const DatasetOptions& options) {
   return LoadOdeSceneAt(options.scene, options.seed, options.resolution);
 }
@@ -80,25 +75,26 @@ int RunDatasetCommand(int argc, char** argv) {
   }
   StatusOr<std::unique_ptr<SimulatedScene>> scene = LoadScene(*options);
   if (!scene.ok()) {
-    return Fail(scene.status().code() == StatusCode::kUnimplemented ? 1 : 2,
-                scene.status().message());
+    return FailCommand("dataset", scene.status().message(),
+                       scene.status().code() == StatusCode::kUnimplemented ? 1 : 2);
   }
   client::LocalServerOptions server_options;
   server_options.memory_only = true;  // the session lives for this command only
   StatusOr<ServerConnection> server = ConnectOrStartServer(options->server, options->server_binary,
                                                            server_options, kCommand, stderr);
   if (!server.ok()) {
-    return Fail(server.status().code() == StatusCode::kNotFound ? 2 : 1, server.status().message());
+    return FailCommand("dataset", server.status().message(),
+                       server.status().code() == StatusCode::kNotFound ? 2 : 1);
   }
 
   const auto start = std::chrono::steady_clock::now();
   StatusOr<Collected> collected = CollectFrames(*options, **scene, *server->client);
-  if (!collected.ok()) return Fail(1, collected.status().message());
+  if (!collected.ok()) return FailCommand("dataset", collected.status().message(), 1);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (Status written = WriteDataset(collected->rows, options->out, options->frames_out);
       !written.ok()) {
-    return Fail(2, written.message());
+    return FailCommand("dataset", written.message(), 2);
   }
   std::size_t moveable = 0;
   for (const DatasetRow& row : collected->rows) moveable += row.moveable ? 1 : 0;
@@ -111,7 +107,8 @@ int RunDatasetCommand(int argc, char** argv) {
                collected->rows.size() - moveable, collected->non_finite,
                1000.0 * seconds / options->frames, collected->server_ms / options->frames,
                options->out.c_str(), options->frames_out.c_str());
-  if (collected->rows.empty()) return Fail(1, "no usable supervoxel in any frame");
+  if (collected->rows.empty())
+    return FailCommand("dataset", "no usable supervoxel in any frame", 1);
   return 0;
 }
 

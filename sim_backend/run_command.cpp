@@ -15,11 +15,6 @@
 namespace relmap::sim {
 namespace {
 
-int Fail(int code, const std::string& message) {
-  std::fprintf(stderr, "relmap-sim run: %s\n", message.c_str());
-  return code;
-}
-
 std::string Score(const std::optional<double>& value) {
   if (!value) return "undefined";
   char text[16];
@@ -74,23 +69,24 @@ int RunExperimentCommand(int argc, char** argv) {
   };
   if (StatusOr<std::unique_ptr<SimulatedScene>> scene = load(options->scene, options->seed);
       !scene.ok()) {
-    return Fail(scene.status().code() == StatusCode::kUnimplemented ? 1 : 2,
-                scene.status().message());
+    return FailCommand("run", scene.status().message(),
+                       scene.status().code() == StatusCode::kUnimplemented ? 1 : 2);
   }
   std::error_code error;
   std::filesystem::create_directories(options->out, error);
-  if (error) return Fail(2, "cannot create " + options->out + ": " + error.message());
+  if (error) return FailCommand("run", "cannot create " + options->out + ": " + error.message(), 2);
 
   client::LocalServerOptions server_options;
   server_options.log_path = options->out + "/server.log";
   StatusOr<ServerConnection> server = ConnectOrStartServer(
       options->server, options->server_binary, server_options, "relmap-sim run", stderr);
   if (!server.ok()) {
-    return Fail(server.status().code() == StatusCode::kNotFound ? 2 : 1, server.status().message());
+    return FailCommand("run", server.status().message(),
+                       server.status().code() == StatusCode::kNotFound ? 2 : 1);
   }
   StatusOr<ExperimentRun> run = RunExperiment(*options, load, *server->client, server->address,
                                               server->launched != nullptr, stderr);
-  if (!run.ok()) return Fail(1, run.status().message());
+  if (!run.ok()) return FailCommand("run", run.status().message(), 1);
   PrintResults(*options, *run);
   for (const ReplicationResult& r : run->replications) {
     if (!r.error.empty()) return 1;

@@ -35,11 +35,6 @@ constexpr image::Rgb kOverlay = {255, 0, 255};
 constexpr image::Rgb kHole = {0, 0, 0};
 constexpr double kTint = 0.35;
 
-int Fail(const char* command, const std::string& message, int code) {
-  std::fprintf(stderr, "relmap-sim %s: %s\n", command, message.c_str());
-  return code;
-}
-
 // `--name value` flags after the leading words; `switches` take no value.
 // False (after printing why) on a stray word, an unknown flag or a missing value.
 bool ParseFlags(int argc, char** argv, const char* command,
@@ -50,7 +45,7 @@ bool ParseFlags(int argc, char** argv, const char* command,
     const std::string flag = argv[i];
     const auto it = known.find(flag);
     if (it == known.end()) {
-      Fail(command, "unknown argument '" + flag + "'", 2);
+      FailCommand(command, "unknown argument '" + flag + "'", 2);
       return false;
     }
     if (!it->second) {
@@ -58,7 +53,7 @@ bool ParseFlags(int argc, char** argv, const char* command,
       continue;
     }
     if (i + 1 >= argc) {
-      Fail(command, flag + " needs a value", 2);
+      FailCommand(command, flag + " needs a value", 2);
       return false;
     }
     (*out)[flag] = argv[++i];
@@ -125,13 +120,13 @@ int RunScenesCommand(int argc, char** argv) {
     return 0;
   }
   const std::vector<std::string> files = ShippedSceneFiles();
-  if (files.empty()) return Fail("scenes", "no scene files in " + ScenesDirectory(), 2);
+  if (files.empty()) return FailCommand("scenes", "no scene files in " + ScenesDirectory(), 2);
   int exit_code = 0;
   std::printf("%-20s %-26s %7s %8s  %s\n", "scene", "file", "static", "moveable", "description");
   for (const std::string& path : files) {
     StatusOr<SceneFile> file = ReadSceneFile(path);
     if (!file.ok()) {
-      exit_code = Fail("scenes", file.status().message(), 2);
+      exit_code = FailCommand("scenes", file.status().message(), 2);
       continue;
     }
     const Scene& scene = file->scene;
@@ -160,25 +155,25 @@ int RunRenderCommand(int argc, char** argv) {
   }
   if (flags.count("--scene") == 0 || flags.count("--png") == 0) {
     std::fputs(kRenderUsage, stderr);
-    return Fail("render", "--scene and --png are required", 2);
+    return FailCommand("render", "--scene and --png are required", 2);
   }
   std::uint64_t seed = 1, width = 0, height = 0;
   if (flags.count("--seed") != 0 && !ParseUnsigned(flags["--seed"], ~std::uint64_t{0}, &seed)) {
-    return Fail("render", "--seed expects a non-negative integer, got '" + flags["--seed"] + "'",
-                2);
+    return FailCommand("render",
+                       "--seed expects a non-negative integer, got '" + flags["--seed"] + "'", 2);
   }
   if (flags.count("--width") != flags.count("--height")) {
-    return Fail("render", "--width and --height go together", 2);
+    return FailCommand("render", "--width and --height go together", 2);
   }
   if (flags.count("--width") != 0 &&
       (!ParseUnsigned(flags["--width"], 4096, &width) ||
        !ParseUnsigned(flags["--height"], 4096, &height) || width == 0 || height == 0)) {
-    return Fail("render", "--width and --height expect 1..4096 pixels", 2);
+    return FailCommand("render", "--width and --height expect 1..4096 pixels", 2);
   }
 
   const auto load_start = std::chrono::steady_clock::now();
   StatusOr<std::unique_ptr<OdeScene>> loaded = OdeScene::Load(flags["--scene"], seed);
-  if (!loaded.ok()) return Fail("render", loaded.status().message(), 2);
+  if (!loaded.ok()) return FailCommand("render", loaded.status().message(), 2);
   OdeScene& scene = **loaded;
   if (width != 0) {
     scene.SetImageSize(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
@@ -191,7 +186,7 @@ int RunRenderCommand(int argc, char** argv) {
   const image::Image picture = image::RasterisePoints(OverlayPoints(frame, scene, overlay),
                                                       frame.width, frame.height, kHole);
   if (Status written = image::WritePng(picture, flags["--png"]); !written.ok()) {
-    return Fail("render", written.message(), 1);
+    return FailCommand("render", written.message(), 1);
   }
   const auto ms = [](auto d) { return std::chrono::duration<double, std::milli>(d).count(); };
   std::printf(
