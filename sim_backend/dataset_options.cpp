@@ -8,8 +8,8 @@
 namespace relmap::sim {
 namespace {
 
-constexpr std::string_view kFlags[] = {"scene",  "frames", "seed",          "resolution",
-                                       "server", "out",    "server-binary", "frames-out"};
+constexpr std::string_view kDatasetFlags[] = {"scene",  "frames", "seed",          "resolution",
+                                              "server", "out",    "server-binary", "frames-out"};
 
 }  // namespace
 
@@ -32,7 +32,7 @@ const char kDatasetUsage[] =
     "Exit codes: 0 success, 1 a failed run or server error, 2 bad arguments or files.\n";
 
 StatusOr<DatasetOptions> ParseDatasetOptions(int argc, const char* const* argv, int first) {
-  StatusOr<FlagValues> flags = ParseFlagPairs(argc, argv, first, kFlags);
+  StatusOr<FlagValues> flags = ParseFlagPairs(argc, argv, first, kDatasetFlags);
   if (!flags.ok()) return flags.status();
   const auto value = [&](std::string_view name) { return FlagValue(*flags, name); };
 

@@ -12,14 +12,14 @@
 namespace relmap::sim {
 namespace {
 
-constexpr std::string_view kFlags[] = {"scene",         "mode",
-                                       "iterations",    "replications",
-                                       "seed",          "server",
-                                       "server-binary", "out",
-                                       "variant",       "alpha",
-                                       "sampling",      "parallel",
-                                       "snapshots",     "change-min-neighbours",
-                                       "resolution",    "change-method"};
+constexpr std::string_view kRunFlags[] = {"scene",         "mode",
+                                          "iterations",    "replications",
+                                          "seed",          "server",
+                                          "server-binary", "out",
+                                          "variant",       "alpha",
+                                          "sampling",      "parallel",
+                                          "snapshots",     "change-min-neighbours",
+                                          "resolution",    "change-method"};
 
 // "1,10,100": iterations in [1, iterations], sorted, without repeats.
 StatusOr<std::vector<int>> SnapshotList(const std::string& text, int iterations) {
@@ -120,7 +120,7 @@ const char kRunUsage[] =
     "Exit codes: 0 success, 1 a failed run or server error, 2 bad arguments or files.\n";
 
 StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* argv, int first) {
-  StatusOr<FlagValues> flags = ParseFlagPairs(argc, argv, first, kFlags);
+  StatusOr<FlagValues> flags = ParseFlagPairs(argc, argv, first, kRunFlags);
   if (!flags.ok()) return flags.status();
   const auto value = [&](std::string_view name) { return FlagValue(*flags, name); };
 

@@ -9,11 +9,11 @@
 namespace relmap::session {
 namespace {
 
-// kMigrations[v] takes the schema from version v to v + 1. Ids are COLLATE "C",
+// kPostgresMigrations[v] takes the schema from version v to v + 1. Ids are COLLATE "C",
 // so that they compare and sort by their bytes, as in the SQLite store. Features
 // and snapshots are the same little-endian blobs as there: bit for bit, by
 // construction.
-constexpr std::string_view kMigrations[] = {
+constexpr std::string_view kPostgresMigrations[] = {
     // 0 → 1: sessions, their samples, the latest snapshot of each, and which
     // server owns each for writing.
     R"sql(
@@ -92,7 +92,7 @@ constexpr std::int64_t kMigrationLock = 0x72656c6d61705363;
 
 }  // namespace
 
-int CurrentPostgresSchemaVersion() { return static_cast<int>(std::size(kMigrations)); }
+int CurrentPostgresSchemaVersion() { return static_cast<int>(std::size(kPostgresMigrations)); }
 
 Status MigratePostgresSchema(PgConnection& connection) {
   PgTransaction transaction(connection);
@@ -126,7 +126,7 @@ Status MigratePostgresSchema(PgConnection& connection) {
   if (version == current) return transaction.Commit();
   for (std::int64_t v = version; v < current; ++v) {
     if (Status status = connection.ExecuteScript(
-            kMigrations[v], "migrating the schema to version " + std::to_string(v + 1));
+            kPostgresMigrations[v], "migrating the schema to version " + std::to_string(v + 1));
         !status.ok()) {
       return status;
     }

@@ -11,9 +11,9 @@
 namespace relmap::session {
 namespace {
 
-// kMigrations[v] takes the schema from version v to v + 1. STRICT tables make
+// kSqliteMigrations[v] takes the schema from version v to v + 1. STRICT tables make
 // SQLite refuse a value of the wrong type instead of converting it.
-constexpr std::string_view kMigrations[] = {
+constexpr std::string_view kSqliteMigrations[] = {
     // 0 → 1: sessions, their samples and the latest snapshot of each.
     R"sql(
 CREATE TABLE sessions (
@@ -74,7 +74,7 @@ UPDATE sessions SET
 
 }  // namespace
 
-int CurrentSchemaVersion() { return static_cast<int>(std::size(kMigrations)); }
+int CurrentSchemaVersion() { return static_cast<int>(std::size(kSqliteMigrations)); }
 
 Status MigrateSchema(sqlite3* db) {
   Transaction transaction(db);
@@ -102,7 +102,7 @@ Status MigrateSchema(sqlite3* db) {
   if (version < 0) return DataLossError("database schema version " + std::to_string(version));
   if (version == current) return OkStatus();
   for (std::int64_t v = version; v < current; ++v) {
-    if (Status status = Execute(db, kMigrations[v]); !status.ok()) return status;
+    if (Status status = Execute(db, kSqliteMigrations[v]); !status.ok()) return status;
   }
   auto update = Statement::Prepare(db,
                                    "INSERT INTO schema_version (id, version) VALUES (1, ?1) "
