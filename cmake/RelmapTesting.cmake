@@ -1,3 +1,11 @@
+# relmap_compile_as_test(<target>): a target of test code (test cases, fixtures) at -O1
+# in Release. It holds fixtures and assertions, and GoogleTest's and GoogleMock's
+# templates cost a quarter less to compile than at -O3 (in_process_service_test.cpp:
+# 10.8 s instead of 14.1 s). The code under test is in the libraries, at -O3 as shipped.
+function(relmap_compile_as_test target)
+  target_compile_options(${target} PRIVATE $<$<CONFIG:Release>:-O1>)
+endfunction()
+
 # relmap_add_gtest(<name> SOURCES <files...> LIBRARIES <targets...> [LABELS <labels...>])
 # A GoogleTest executable registered with CTest test by test (gtest_discover_tests).
 include(GoogleTest)
@@ -6,6 +14,7 @@ function(relmap_add_gtest name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBRARIES} GTest::gmock GTest::gtest_main relmap_warnings)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+  relmap_compile_as_test(${name})
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60)
   # The labels are set by a CTest script of their own, read after the discovered tests:
   # given to gtest_discover_tests(PROPERTIES LABELS "unit;threads"), a list reaches
