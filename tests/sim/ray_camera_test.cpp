@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "frame_pixels.h"
 #include "world_test_scenes.h"
 
 namespace relmap::sim {
@@ -27,15 +28,6 @@ std::string BoxWallBall() {
        "spawn": {"min": {"x": 1.5, "y": 0.6}, "max": {"x": 1.5, "y": 0.6},
                  "orientation": "fixed"}}],
     "physics": {"gravity": 0}})";
-}
-
-const CameraPoint& At(const CameraFrame& frame, int u, int v) {
-  return frame.points[static_cast<std::size_t>(v) * frame.width + u];
-}
-// A point of a temporary frame would dangle once the statement ends (ASan found one).
-const CameraPoint& At(CameraFrame&& frame, int u, int v) = delete;
-std::int32_t IdAt(const CameraFrame& frame, int u, int v) {
-  return frame.body_ids[static_cast<std::size_t>(v) * frame.width + u];
 }
 
 TEST(RayCamera, FramesAreOrganizedAtTheCamerasSize) {

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <set>
 
+#include "frame_pixels.h"
 #include "kinect_noise_model.h"
 #include "world_test_scenes.h"
 
@@ -45,12 +46,8 @@ std::string Wall(double face_x, double yaw_deg = 0) {
 constexpr char kBox[] = R"({"shape": "box", "size": {"x": 0.2, "y": 0.38, "z": 0.4},
     "color": {"r": 200}, "pose": {"position": {"x": 1.1}}})";
 
-const CameraPoint& At(const CameraFrame& frame, int u, int v) {
-  return frame.points[static_cast<std::size_t>(v) * frame.width + u];
-}
 bool Hole(const CameraFrame& frame, int u, int v) {
-  return std::isnan(At(frame, u, v).z) &&
-         frame.body_ids[static_cast<std::size_t>(v) * frame.width + u] == kNoBody;
+  return std::isnan(At(frame, u, v).z) && IdAt(frame, u, v) == kNoBody;
 }
 
 // Every field of every pixel, coordinates by their bits (NaNs included; not the
