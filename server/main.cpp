@@ -24,7 +24,7 @@ namespace {
 // their own and unmapped when freed; smaller ones (a Kinect frame's request and its 9.8 MB
 // decoded cloud) come from the arenas and are reused frame after frame. With a 256 KiB
 // threshold every frame mapped ~12,000 fresh pages and the server spent a fifth of its CPU
-// in the kernel; 32 MiB maps 8-13 % more frames per second for 50-100 MB more RSS under
+// in the kernel; 32 MiB maps 8-13 % more frames per second for 45-130 MB more RSS under
 // load and none once the sessions go (docs/reliability.md, "Memory"). Fixed, the threshold
 // does not raise glibc's trim threshold, so free memory at an arena's top is still returned.
 constexpr std::size_t kMmapThresholdBytes = std::size_t{32} << 20;
