@@ -11,7 +11,7 @@ mode=${1:-address}
 shift || true
 
 targets=()
-extra_packages=()
+extra_packages=(ccache)  # the compiler launcher below
 link_flags=""
 case "$mode" in
   address)
@@ -66,7 +66,7 @@ case "$mode" in
     # - gRPC and Abseil built with TSan (scripts/sanitizers/build-tsan-grpc.sh), same
     #   sonames: with Debian's, TSan cannot see gRPC's synchronisation and every server and
     #   client test fails on its reports.
-    extra_packages=(libomp-14-dev)
+    extra_packages+=(libomp-14-dev)
     openmp=$PWD/$build/openmp
     mkdir -p "$openmp"
     ln -sf /usr/lib/llvm-14/lib/libomp.so.5 "$openmp/libgomp.so.1"
