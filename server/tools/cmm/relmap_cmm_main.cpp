@@ -28,13 +28,15 @@ constexpr std::string_view kUsage =
     "usage: relmap-cmm --train train.csv [--test test.csv]\n"
     "                  [--variant corrected|corrected_v1|paper2018 | --config SPEC]\n"
     "                  [--alpha 0.25] [--regularization 1e-6] [--seed N] [--active]\n"
-    "                  [--budget N] [--curve N [--curve-csv curve.csv]]\n"
+    "                  [--budget N] [--picks-out picks.txt] [--curve N [--curve-csv curve.csv]]\n"
     "  CSV rows: label,f1,...,fp (label 0 or 1; a header line is allowed).\n"
     "  --config   a variant with options changed, e.g. corrected:acceptance=training\n"
     "             (keys: alpha, regularization, pseudo_samples, variance_floor,\n"
     "             covariance, acceptance, overlap, prediction; see docs/method.md)\n"
     "  --active   the choice map picks each next sample from the training pool\n"
     "  --budget   with --active: stop after N samples (default: the whole pool)\n"
+    "  --picks-out  with --active: write the picked training rows (0-based, in pick\n"
+    "             order), so that another learner can be trained on the same samples\n"
     "  --curve    score the test set every N samples (a learning curve)\n"
     "  --curve-csv  also write that curve as CSV (for relmap-plot)\n";
 
@@ -44,6 +46,7 @@ struct Options {
   cmm::CmmConfig config;
   bool active = false;
   int budget = -1;
+  std::string picks_out;
   int curve_every = 0;
   std::string curve_csv;
 };
@@ -89,6 +92,8 @@ Options ParseArguments(int argc, char** argv) {
       options.active = true;
     else if (flag == "--budget")
       options.budget = static_cast<int>(ParseNumber(flag, value()));
+    else if (flag == "--picks-out")
+      options.picks_out = value();
     else if (flag == "--curve")
       options.curve_every = static_cast<int>(ParseNumber(flag, value()));
     else if (flag == "--curve-csv")
@@ -114,6 +119,7 @@ Options ParseArguments(int argc, char** argv) {
   if (options.curve_every < 0 || (options.active && options.budget == 0)) {
     Fail("--curve and --budget must be positive");
   }
+  if (!options.picks_out.empty() && !options.active) Fail("--picks-out needs --active");
   if (!options.curve_csv.empty() && (options.curve_every == 0 || options.test.empty())) {
     Fail("--curve-csv needs --curve N and --test");
   }
@@ -202,6 +208,15 @@ class Run {
       for (Eigen::Index i = 0; i < train_.features.rows(); ++i) Learn(static_cast<int>(i));
     }
     if (!options_.curve_csv.empty()) WriteCurveCsv();
+    if (!options_.picks_out.empty()) WritePicks();
+  }
+
+  // The training rows --active picked, one 0-based index per line, in pick order.
+  void WritePicks() const {
+    std::FILE* file = std::fopen(options_.picks_out.c_str(), "w");
+    if (file == nullptr) Fail("cannot write " + options_.picks_out);
+    for (const int row : picks_) std::fprintf(file, "%d\n", row);
+    std::fclose(file);
   }
 
   std::string Report() {
@@ -277,7 +292,8 @@ class Run {
             u, exploration::Confidence(e, exploration.confidence), exploration.paper_choice_quirks);
         return exploration::DrawTarget(choice, step, exploration.paper_choice_quirks, sampler_);
       });
-      Learn(pool[static_cast<std::size_t>(pick)]);
+      picks_.push_back(pool[static_cast<std::size_t>(pick)]);
+      Learn(picks_.back());
       pool[static_cast<std::size_t>(pick)] = pool.back();
       pool.pop_back();
     }
@@ -299,6 +315,7 @@ class Run {
   Random sampler_;
   LatencyRecorder update_, predict_, choice_;
   std::vector<CurvePoint> curve_;
+  std::vector<int> picks_;  // --active: the rows picked, in order
 };
 
 }  // namespace

@@ -45,6 +45,16 @@ expect paper 0 '"variant":"paper2018"' "$cmm" --train "$dir/train.csv" --variant
 expect curve-csv-needs-test 2 "--curve-csv needs --curve N and --test" "$cmm" --train "$dir/train.csv" --curve-csv "$dir/c.csv"
 expect curve-csv 0 '"curve":[{"samples":100' "$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --curve 100 --curve-csv "$dir/curve.csv"
 expect curve-csv-rows 0 "300,"  cat "$dir/curve.csv"
+expect picks-need-active 2 "--picks-out needs --active" "$cmm" --train "$dir/train.csv" --picks-out "$dir/picks.txt"
+"$cmm" --train "$dir/train.csv" --active --budget 50 --seed 3 --picks-out "$dir/picks.txt" >/dev/null
+# 50 picks, each a distinct row of the 300.
+if [ "$(wc -l <"$dir/picks.txt")" -eq 50 ] && [ "$(sort -u "$dir/picks.txt" | wc -l)" -eq 50 ] &&
+  [ "$(sort -n "$dir/picks.txt" | tail -1)" -lt 300 ]; then
+  echo "ok   picks-out"
+else
+  echo "FAIL picks-out: $(tr '\n' ' ' <"$dir/picks.txt")"
+  failures=$((failures + 1))
+fi
 
 # Same seed, same report (latencies aside).
 a=$("$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --active --seed 9 | sed 's/"latency_us".*"curve"/"curve"/')
