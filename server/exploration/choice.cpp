@@ -35,15 +35,43 @@ Eigen::VectorXd UncertaintyMap(const Eigen::VectorXd& relevance, int moveable_sa
 
 Eigen::VectorXd ChoiceMap(const Eigen::VectorXd& uncertainty, const Eigen::VectorXd& confidence,
                           bool paper_quirks) {
-  assert(uncertainty.size() == confidence.size());
-  Eigen::VectorXd w = uncertainty.array() * (1.0 - confidence.array());
+  const Eigen::VectorXd unknown = Eigen::VectorXd::Constant(uncertainty.size(), 0.5);
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(uncertainty.size());
+  return ChoiceMap({unknown, uncertainty, confidence, ones},
+                   ExplorationConfig{.paper_choice_quirks = paper_quirks});
+}
+
+namespace {
+
+// ½ a/Σa + ½ b/Σb, a half left out when its sum is 0 (the other then takes all).
+Eigen::VectorXd HalfEach(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const double sa = a.sum(), sb = b.sum();
+  if (!(sa > 0.0)) return b;
+  if (!(sb > 0.0)) return a;
+  return 0.5 * (a / sa + b / sb);
+}
+
+}  // namespace
+
+Eigen::VectorXd ChoiceMap(const ChoiceTerms& terms, const ExplorationConfig& config) {
+  const Eigen::VectorXd& g = terms.novelty;
+  assert(terms.uncertainty.size() == terms.confidence.size() &&
+         g.size() == terms.confidence.size() && terms.relevance.size() == g.size());
+  const bool paper_quirks = config.paper_choice_quirks;
+  Eigen::VectorXd w = config.rule == ChoiceRule::kClassBalanced
+                          ? HalfEach(terms.relevance.cwiseProduct(g),
+                                     (1.0 - terms.relevance.array()).matrix().cwiseProduct(g))
+                          : Eigen::VectorXd(terms.uncertainty.array() *
+                                            (1.0 - terms.confidence.array()) * g.array());
   if (paper_quirks) w = (w.array() < kPaperChoiceFloor).select(0.0, w);
   const double total = w.sum();
   if (!(total > 0.0)) {
     return Eigen::VectorXd::Constant(
         w.size(), 1.0 / static_cast<double>(std::max<Eigen::Index>(1, w.size())));
   }
-  return w / total;
+  const double share = config.random_share;
+  if (share <= 0.0) return w / total;
+  return (1.0 - share) * (w / total).array() + share / static_cast<double>(w.size());
 }
 
 int DrawTarget(const Eigen::VectorXd& choice, int interactions, bool paper_quirks, Random& random) {

@@ -21,6 +21,19 @@ Eigen::VectorXd UncertaintyMap(const Eigen::VectorXd& relevance, int moveable_sa
 Eigen::VectorXd ChoiceMap(const Eigen::VectorXd& uncertainty, const Eigen::VectorXd& confidence,
                           bool paper_quirks);
 
+// Per point, what a frame's choice map is made of (§4.3, §4.4).
+struct ChoiceTerms {
+  const Eigen::VectorXd& relevance;    // r
+  const Eigen::VectorXd& uncertainty;  // u
+  const Eigen::VectorXd& confidence;   // c
+  const Eigen::VectorXd& novelty;      // g: all 1 without the diversity term
+};
+
+// The choice map of a session's exploration options (§4.4): the rule's weights
+// (u_i (1 − c_i), or the class-balanced mixture of r and 1 − r) times g_i,
+// normalised, then mixed with the uniform map by `config.random_share`.
+Eigen::VectorXd ChoiceMap(const ChoiceTerms& terms, const ExplorationConfig& config);
+
 // Draws the index of the next target from a choice map with the session's RNG.
 // `interactions` is the number of targets drawn before; with `paper_quirks`
 // the first kPaperUniformChoices draws are uniform over all but the last index.

@@ -22,6 +22,21 @@ enum class ConfidenceMode {
   kMembership,
 };
 
+// What the choice map weighs before the diversity term and the random share (§4.4).
+enum class ChoiceRule {
+  kUncertainty,  // w = u (1 − c): the paper's rule
+  // w = ½ r/Σr + ½ (1 − r)/Σ(1 − r), r the relevance: half the draws among what the
+  // model thinks moveable, half among the rest, each in proportion to how much it
+  // thinks so; a class-balanced sample of the scene rather than of its boundary.
+  kClassBalanced,
+};
+
+// A diversity term of the choice map (§4.4).
+enum class Diversity {
+  kNone,     // w = u (1 − c): the paper's rule
+  kNovelty,  // w = u (1 − c) g, g the novelty against the labelled samples
+};
+
 struct ExplorationConfig {
   ConfidenceMode confidence = ConfidenceMode::kNearestPeak;
   // The later published tag (§4.1): ties of the class counts go to the other
@@ -31,6 +46,10 @@ struct ExplorationConfig {
   // kPaperUniformChoices targets are drawn uniformly with an off-by-one range
   // that never picks the last supervoxel.
   bool paper_choice_quirks = false;
+  ChoiceRule rule = ChoiceRule::kUncertainty;
+  Diversity diversity = Diversity::kNone;
+  // ε of the choice map given to a uniform draw: choice = (1 − ε) w/Σw + ε/N (§4.4).
+  double random_share = 0.0;
 
   static ExplorationConfig ForVariant(cmm::Variant variant) {
     ExplorationConfig config;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "exploration/choice.h"
+#include "exploration/novelty.h"
 
 namespace relmap::exploration {
 
@@ -33,7 +34,9 @@ FrameMaps ComputeFrameMaps(const cmm::CollaborativeMixtureModels& model,
   const Eigen::VectorXd u = UncertaintyMap(evaluation.relevance, model.sample_count(1),
                                            model.sample_count(0), config.uncertainty_bug);
   const Eigen::VectorXd c = Confidence(evaluation, config.confidence);
-  const Eigen::VectorXd choice = ChoiceMap(u, c, config.paper_choice_quirks);
+  const Eigen::VectorXd g = config.diversity == Diversity::kNovelty ? Novelty(rows, model.dataset())
+                                                                    : Eigen::VectorXd::Ones(m);
+  const Eigen::VectorXd choice = ChoiceMap({evaluation.relevance, u, c, g}, config);
 
   for (Eigen::Index j = 0; j < m; ++j) {
     maps.relevance[usable[j]] = evaluation.relevance[j];
