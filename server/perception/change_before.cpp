@@ -29,8 +29,11 @@ ChangeBefore ChangeBefore::Of(const Frame& frame, const ChangeDetectorConfig& co
   before.voxel_positions_ = PackWords(words);
   before.voxel_offsets_.shrink_to_fit();
   if (config.method == ChangeMethod::kVisibility) {
+    // BuildFrame's objects, or, for a frame put together without it, computed here.
     before.object_labels_ =
-        ObjectLabels(frame.segmentation.supervoxels, config.object_smooth_angle_deg);
+        frame.objects.size() == frame.size()
+            ? frame.objects
+            : ObjectLabels(frame.segmentation.supervoxels, config.object_smooth_angle_deg);
   }
   return before;
 }

@@ -49,6 +49,11 @@ struct ChangeEvidence {
   std::size_t carried_supported_points = 0;
   std::size_t carried_vacated_points = 0;
   std::size_t carried_occluded_points = 0;
+  // When moved (kVisibility): the ids of the object's other supervoxels whose own points
+  // show the move as the target's would (SeenCounts::Moved over their sampled points), in
+  // id order. They moved, so they are moveable: the session learns them with the target
+  // (docs/method.md §4.5).
+  std::vector<std::uint32_t> moved_supervoxels;
   // The camera motion between the frames that was compensated first.
   double camera_rotation_deg = 0;
   double camera_translation_m = 0;

@@ -341,6 +341,31 @@ bool FollowedObject(const std::vector<ObjectPoint>& points, std::size_t target_c
          !SeenThroughMore(carried, of_target, kFollowVetoZ);
 }
 
+// The object's other supervoxels that moved by the same test as the target's (SeenCounts::
+// Moved), each over its own points among `points` (every `weight`-th of its finite points,
+// so the floor on vacated points is scaled down alike). A part the push pushed in front of
+// another is hidden, not seen through, and does not count: only what left its place does.
+std::vector<std::uint32_t> MovedParts(const std::vector<ObjectPoint>& points,
+                                      std::size_t target_count, const std::vector<Seen>& seen_of,
+                                      const std::vector<bool>& beyond_motion,
+                                      const std::vector<const Supervoxel*>& object,
+                                      std::size_t weight, const ChangeDetectorConfig& config) {
+  std::vector<SeenCounts> parts(object.size());
+  for (std::size_t i = target_count; i < points.size(); ++i) {
+    SeenCounts& part = parts[points[i].part - 1];
+    ++part.points;
+    part.Add(seen_of[i], beyond_motion[i]);
+  }
+  const std::size_t min_points =
+      std::max<std::size_t>(1, static_cast<std::size_t>(config.min_vacated_points) / weight);
+  std::vector<std::uint32_t> moved;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    if (parts[k].Moved(config.min_vacated_fraction, min_points)) moved.push_back(object[k]->id);
+  }
+  std::sort(moved.begin(), moved.end());
+  return moved;
+}
+
 }  // namespace
 
 void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxel& target,
@@ -469,6 +494,10 @@ void DetectByVisibility(const Cloud& before, const Cloud& after, const Supervoxe
   } else if (of_object.Moved(config.min_vacated_fraction, min_points)) {
     e.moved = !intrinsics || FollowedObject(points, target_count, of_target, seen_of, seen, before,
                                             *intrinsics, gain, config, e);
+  }
+  if (e.moved) {
+    e.moved_supervoxels =
+        MovedParts(points, target_count, seen_of, beyond_motion, object, weight, config);
   }
 }
 

@@ -3,6 +3,8 @@
 
 #include <chrono>
 
+#include "perception/change_object.h"
+
 namespace relmap::perception {
 
 StatusOr<Frame> BuildFrame(Cloud cloud, const PerceptionConfig& config) {
@@ -16,6 +18,8 @@ StatusOr<Frame> BuildFrame(Cloud cloud, const PerceptionConfig& config) {
   frame.timings.filter_ms = frame.segmentation.filter_ms;
   frame.timings.supervoxels_ms = frame.segmentation.supervoxels_ms;
   frame.timings.normals_ms = frame.segmentation.normals_ms;
+  frame.objects =
+      ObjectLabels(frame.segmentation.supervoxels, config.change.object_smooth_angle_deg);
   const auto features_start = std::chrono::steady_clock::now();
   frame.features =
       ComputeFeatures(frame.cloud, frame.segmentation, config.features, config.threads);

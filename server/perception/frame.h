@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <vector>
 
 #include "common/status.h"
 #include "perception/cloud.h"
@@ -26,6 +28,9 @@ struct Frame {
   // supervoxels[i].id == i == row i of features.values; point_labels per cloud point.
   Segmentation segmentation;
   FeatureMatrix features;
+  // Per supervoxel, the object it lies on (change_object.h ObjectLabels, with
+  // config.change.object_smooth_angle_deg): one value per rigid object a push moves whole.
+  std::vector<std::uint32_t> objects;
   FrameTimings timings;
 
   std::size_t size() const { return segmentation.supervoxels.size(); }

@@ -188,6 +188,9 @@ struct ChangeDetectorConfig {
   // normals are less than this apart (change_object.h; LCCP's concavity tolerance, Stein et
   // al. 2014, whose default is 10 degrees).
   double object_smooth_angle_deg = 10.0;
+  // With a moved target, the session also learns as moveable the object's supervoxels the
+  // detector saw move (ChangeEvidence::moved_supervoxels, docs/method.md §4.5).
+  bool learn_moved_object = true;
   // The smallest motion that counts as a move, in metres (0: any the camera can see). A
   // move then also needs min_vacated_points vacated points with no after-point within this
   // distance, searched over as many pixels as it spans at the point's depth (at most

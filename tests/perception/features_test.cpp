@@ -7,9 +7,11 @@
 #include <pcl/point_types.h>
 #include <pcl/search/kdtree.h>
 
+#include <map>
 #include <memory>
 #include <string>
 
+#include "perception/change_object.h"
 #include "perception/colour_histogram.h"
 #include "perception/fpfh.h"
 #include "perception/frame.h"
@@ -217,6 +219,23 @@ TEST(FeatureConfig, RadiiOutsideTheirRangesAreInvalid) {
   EXPECT_FALSE(Validate(config).ok());
   config.features.raw_point_spacing = 0.0f;
   EXPECT_TRUE(Validate(config).ok());
+}
+
+// BuildFrame gives each supervoxel its object (ObjectLabels with the change detector's
+// angle): the mug scene's table is one object of many supervoxels, and not every
+// supervoxel is on it.
+TEST(Frame, GivesEverySupervoxelTheObjectOfChangeObject) {
+  RELMAP_LOAD_REAL_CLOUD(cloud, "table_scene_mug_stereo_textured.pcd");
+  const PerceptionConfig config;
+  StatusOr<Frame> frame = BuildFrame(cloud, config);
+  ASSERT_TRUE(frame.ok()) << frame.status().message();
+  ASSERT_EQ(frame->objects.size(), frame->size());
+  EXPECT_EQ(frame->objects,
+            ObjectLabels(frame->segmentation.supervoxels, config.change.object_smooth_angle_deg));
+  std::map<std::uint32_t, std::size_t> sizes;
+  for (const std::uint32_t object : frame->objects) ++sizes[object];
+  EXPECT_GT(sizes.size(), 1u);
+  EXPECT_LT(sizes.size(), frame->size());
 }
 
 }  // namespace

@@ -168,5 +168,44 @@ TEST(VisibilityChange, TheSmallestMotionThatCountsIsLookedForSideways) {
   EXPECT_TRUE(over.moved);
 }
 
+// The supervoxel of the 20x20 pixels from column u0, rows 50-69, with id `id`.
+Supervoxel PatchAt(std::uint32_t u0, std::uint32_t id) {
+  Supervoxel patch;
+  patch.id = id;
+  for (std::uint32_t v = 50; v < 70; ++v) {
+    for (std::uint32_t u = u0; u < u0 + 20; ++u) {
+      patch.point_indices.push_back(static_cast<std::int32_t>(v * kWidth + u));
+    }
+  }
+  patch.voxels.push_back({Eigen::Vector3f(0, 0, 1), Eigen::Vector3f(0, 0, -1), {0, 0, 0}});
+  return patch;
+}
+
+// The target (columns 70-89) and its object's part 5 (90-109) went back 5 cm; part 7
+// (30-49) stayed; part 9 (110-129) is hidden behind something 5 cm nearer. Only part 5
+// left its place: it alone is named as moved with the target.
+TEST(VisibilityChange, NamesTheObjectsOtherPartsThatMoved) {
+  const Cloud after = testing::PinholeCloud([](std::uint32_t u, std::uint32_t v) {
+    if (v < 50 || v >= 70) return 1.0f;
+    if (u >= 70 && u < 110) return 1.05f;
+    return u >= 110 && u < 130 ? 0.95f : 1.0f;
+  });
+  const Supervoxel target = PatchAt(70, 0), went = PatchAt(90, 5), stayed = PatchAt(30, 7),
+                   hidden = PatchAt(110, 9);
+  ChangeDetectorConfig config;
+  config.compensate_camera_motion = false;
+  const StatusOr<ChangeEvidence> e =
+      DetectChange(Wall(1.0f), after, target, {&hidden, &stayed, &went}, config);
+  ASSERT_TRUE(e.ok()) << e.status().message();
+  EXPECT_TRUE(e->moved);
+  EXPECT_EQ(e->moved_supervoxels, std::vector<std::uint32_t>{5});
+  // A target that did not move names nothing.
+  const StatusOr<ChangeEvidence> still =
+      DetectChange(Wall(1.0f), Wall(1.0f), target, {&hidden, &stayed, &went}, config);
+  ASSERT_TRUE(still.ok()) << still.status().message();
+  EXPECT_FALSE(still->moved);
+  EXPECT_TRUE(still->moved_supervoxels.empty());
+}
+
 }  // namespace
 }  // namespace relmap::perception
