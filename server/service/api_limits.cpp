@@ -86,6 +86,7 @@ constexpr FieldRange kSessionConfigRanges[] = {
            "change.object_smooth_angle_deg"),
     Closed("change_detector.min_motion", 0, perception::kMaxMinMotion, "m", "change.min_motion"),
     Closed("features.fpfh_radius", perception::kMinFpfhRadius, perception::kMaxFpfhRadius, "m"),
+    Closed("exploration.random_share", 0, 1),
 };
 // clang-format on
 

@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include "exploration/exploration_spec.h"
+
 namespace relmap::service {
 namespace {
 
@@ -160,6 +162,21 @@ StatusOr<session::SessionSettings> SettingsFromProto(const v1::SessionConfig& co
   if (cd.has_compensate_camera_motion()) {
     change.compensate_camera_motion = cd.compensate_camera_motion();
   }
+  if (cd.has_learn_moved_object()) change.learn_moved_object = cd.learn_moved_object();
+  if (config.exploration().novelty()) {
+    settings.exploration.diversity = exploration::Diversity::kNovelty;
+  }
+  if (config.exploration().has_class_balanced()) {
+    settings.exploration.rule = config.exploration().class_balanced()
+                                    ? exploration::ChoiceRule::kClassBalanced
+                                    : exploration::ChoiceRule::kUncertainty;
+  }
+  if (config.exploration().has_random_share()) {
+    settings.exploration.random_share = config.exploration().random_share();
+  }
+  if (Status valid = exploration::ValidateExploration(settings.exploration); !valid.ok()) {
+    return InvalidArgumentError("config.exploration: " + valid.message());
+  }
   StatusOr<perception::FeatureConfig> features = FeaturesFromProto(config.features());
   if (!features.ok()) return features.status();
   settings.perception.features = *features;
@@ -214,7 +231,13 @@ v1::SessionConfig ProtoFromSettings(const session::SessionSettings& settings) {
   cd->set_colour_tolerance(change.colour_tolerance);
   cd->set_object_smooth_angle_deg(change.object_smooth_angle_deg);
   cd->set_min_motion(change.min_motion);
+  cd->set_learn_moved_object(change.learn_moved_object);
   FeaturesToProto(settings.perception.features, config.mutable_features());
+  config.mutable_exploration()->set_novelty(settings.exploration.diversity ==
+                                            exploration::Diversity::kNovelty);
+  config.mutable_exploration()->set_random_share(settings.exploration.random_share);
+  config.mutable_exploration()->set_class_balanced(settings.exploration.rule ==
+                                                   exploration::ChoiceRule::kClassBalanced);
   config.set_seed(settings.classifier.seed);
   config.set_feature_dimension(static_cast<std::uint32_t>(settings.feature_dimension));
   return config;
@@ -258,6 +281,8 @@ void FillEvidence(const perception::ChangeEvidence& evidence, v1::ChangeEvidence
   out->set_carried_supported_points(evidence.carried_supported_points);
   out->set_carried_vacated_points(evidence.carried_vacated_points);
   out->set_carried_occluded_points(evidence.carried_occluded_points);
+  out->mutable_moved_supervoxels()->Add(evidence.moved_supervoxels.begin(),
+                                        evidence.moved_supervoxels.end());
 }
 
 session::EncodedCloud EncodedCloudOf(const v1::Cloud& cloud) {

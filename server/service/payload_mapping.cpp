@@ -79,6 +79,7 @@ void FillMappedFrame(const session::MappedFrame& mapped, bool include_features,
     supervoxel->set_point_count(static_cast<std::uint32_t>(sv.point_indices.size()));
     supervoxel->set_relevance(maps.relevance[sv.id]);
     supervoxel->set_choice(maps.choice[sv.id]);
+    supervoxel->set_object(frame.objects[sv.id]);
     if (include_features) {
       const auto row = frame.features.values.row(sv.id);
       supervoxel->mutable_features()->Add(row.begin(), row.end());

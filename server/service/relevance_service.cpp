@@ -3,6 +3,7 @@
 #include "service/relevance_service.h"
 
 #include <chrono>
+#include <span>
 
 #include "service/api_limits.h"
 #include "service/call_log.h"
@@ -159,21 +160,29 @@ grpc::Status RelevanceService::PostOutcome(grpc::ServerContext* context,
     auto session = Authorised(*context, request->session_id());
     if (!session.ok()) return ToGrpcStatus(session.status());
     if (Status valid = CheckEnumValues(*request); !valid.ok()) return ToGrpcStatus(valid);
+    const session::Alongside alongside{
+        {request->moved_supervoxels().data(),
+         static_cast<std::size_t>(request->moved_supervoxels().size())},
+        {request->object_supervoxels().data(),
+         static_cast<std::size_t>(request->object_supervoxels().size())}};
     StatusOr<session::Outcome> outcome = InvalidArgumentError(
         "the outcome needs a label (LABEL_MOVEABLE or LABEL_NOT_MOVEABLE) or an after_cloud");
     if (request->has_after_cloud()) {
       auto after = TakeCloud(*context, request->after_cloud(), request->session_id());
       if (!after.ok()) return ToGrpcStatus(after.status());
       outcome = (*session)->PostOutcomeFromCloud(request->frame_id(), request->supervoxel_id(),
-                                                 after->cloud, request->request_id(), NowUnixMs());
+                                                 after->cloud, request->request_id(), NowUnixMs(),
+                                                 alongside);
     } else if (const int label = ClassOf(request->label()); label >= 0) {
       outcome = (*session)->PostOutcome(request->frame_id(), request->supervoxel_id(), label,
-                                        request->request_id(), NowUnixMs());
+                                        request->request_id(), NowUnixMs(), alongside);
     }
     if (!outcome.ok()) return ToGrpcStatus(outcome.status());
     response->set_label(LabelOf(outcome->label));
     FillStats(outcome->stats, response->mutable_stats());
     if (outcome->evidence) FillEvidence(*outcome->evidence, response->mutable_evidence());
+    response->set_moved_learned(outcome->moved_learned);
+    response->set_object_learned(outcome->object_learned);
     return grpc::Status::OK;
   });
 }

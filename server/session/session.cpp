@@ -1,9 +1,11 @@
 // A session's calls: maps of a cloud, outcomes, raw features.
 #include "session/session.h"
 
+#include <algorithm>
 #include <chrono>
 #include <span>
 #include <string>
+#include <utility>
 
 #include "session/credentials.h"
 
@@ -120,8 +122,51 @@ StatusOr<std::shared_ptr<const CachedFrame>> Session::FrameForOutcomeLocked(
   return cached;
 }
 
+namespace {
+
+// The supervoxels a client labels beside the target: each one the frame has, not the
+// target and not repeated, within a list or across the two.
+Status CheckAlongside(const Eigen::MatrixXd& features, std::uint64_t frame_id, std::uint32_t target,
+                      const Alongside& alongside) {
+  std::vector<bool> seen(static_cast<std::size_t>(features.rows()), false);
+  seen[target] = true;
+  for (const auto& [list, name] :
+       {std::pair{alongside.moved, "moved"}, std::pair{alongside.same_object, "same-object"}}) {
+    for (const std::uint32_t id : list) {
+      const std::string which = std::string(name) + " supervoxel " + std::to_string(id) +
+                                " of frame " + std::to_string(frame_id);
+      if (id >= features.rows()) {
+        return InvalidArgumentError(which + ": the frame has " + std::to_string(features.rows()) +
+                                    " supervoxels");
+      }
+      if (seen[id]) return InvalidArgumentError(which + " is the target or a repeat");
+      seen[id] = true;
+    }
+  }
+  return OkStatus();
+}
+
+// The client's moved supervoxels, then those the change detector saw move that the client
+// did not name in either list (the detector never names the target).
+std::vector<std::uint32_t> WithDetected(const Alongside& from_client,
+                                        const std::vector<std::uint32_t>& detected) {
+  std::vector<std::uint32_t> moved(from_client.moved.begin(), from_client.moved.end());
+  const auto named = [&](std::uint32_t id) {
+    return std::find(moved.begin(), moved.end(), id) != moved.end() ||
+           std::find(from_client.same_object.begin(), from_client.same_object.end(), id) !=
+               from_client.same_object.end();
+  };
+  for (const std::uint32_t id : detected) {
+    if (!named(id)) moved.push_back(id);
+  }
+  return moved;
+}
+
+}  // namespace
+
 StatusOr<Outcome> Session::LearnOutcomeLocked(const CachedFrame& frame, std::uint32_t supervoxel_id,
-                                              int label, const std::string& request_id,
+                                              int label, const Alongside& alongside,
+                                              const std::string& request_id,
                                               std::optional<perception::ChangeEvidence> evidence,
                                               std::int64_t now_unix_ms) {
   const std::string key = request_id.empty() ? "auto-" + RandomHex(12) : request_id;
@@ -130,28 +175,55 @@ StatusOr<Outcome> Session::LearnOutcomeLocked(const CachedFrame& frame, std::uin
       !status.ok()) {
     return status;
   }
+  // One store key per sample, as AddSamples: a retry skips what was committed already.
+  // Unusable rows (non-finite features) are skipped: nothing can be learned from them.
+  const auto learn_each = [&](std::span<const std::uint32_t> ids, const char* part,
+                              int as) -> StatusOr<std::uint32_t> {
+    std::uint32_t learned = 0;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const auto other = static_cast<Eigen::Index>(ids[i]);
+      if (!frame.features.row(other).allFinite()) continue;
+      if (Status status = PersistAndLearn(key + part + std::to_string(i),
+                                          frame.features.row(other).transpose(), as);
+          !status.ok()) {
+        return status;
+      }
+      ++learned;
+    }
+    return learned;
+  };
+  StatusOr<std::uint32_t> moved_learned = learn_each(alongside.moved, "/moved/", 1);
+  if (!moved_learned.ok()) return moved_learned.status();
+  StatusOr<std::uint32_t> object_learned = learn_each(alongside.same_object, "/object/", label);
+  if (!object_learned.ok()) return object_learned.status();
   last_used_unix_ms_ = now_unix_ms;
   RecordSummaryLocked();
-  Outcome outcome{StatsLocked(), label, evidence};
+  Outcome outcome{StatsLocked(), label, std::move(evidence), *moved_learned, *object_learned};
   if (!request_id.empty()) RememberLocked(request_id, outcome);
   return outcome;
 }
 
 StatusOr<Outcome> Session::PostOutcome(std::uint64_t frame_id, std::uint32_t supervoxel_id,
                                        int label, const std::string& request_id,
-                                       std::int64_t now_unix_ms) {
+                                       std::int64_t now_unix_ms, const Alongside& alongside) {
   std::lock_guard lock(mutex_);
   if (const Outcome* answered = AnsweredLocked(request_id)) return *answered;
   if (label != 0 && label != 1) return InvalidArgumentError("label must be 0 or 1");
   auto frame = FrameForOutcomeLocked(frame_id, supervoxel_id);
   if (!frame.ok()) return frame.status();
-  return LearnOutcomeLocked(**frame, supervoxel_id, label, request_id, std::nullopt, now_unix_ms);
+  if (Status status = CheckAlongside((*frame)->features, frame_id, supervoxel_id, alongside);
+      !status.ok()) {
+    return status;
+  }
+  return LearnOutcomeLocked(**frame, supervoxel_id, label, alongside, request_id, std::nullopt,
+                            now_unix_ms);
 }
 
 StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uint32_t supervoxel_id,
                                                 const perception::Cloud& after,
                                                 const std::string& request_id,
-                                                std::int64_t now_unix_ms) {
+                                                std::int64_t now_unix_ms,
+                                                const Alongside& alongside) {
   std::shared_ptr<const CachedFrame> frame;
   {
     std::lock_guard lock(mutex_);
@@ -159,6 +231,10 @@ StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uin
     auto found = FrameForOutcomeLocked(frame_id, supervoxel_id);
     if (!found.ok()) return found.status();
     frame = std::move(found).value();
+  }
+  if (Status status = CheckAlongside(frame->features, frame_id, supervoxel_id, alongside);
+      !status.ok()) {
+    return status;
   }
   // Unpacking and the detector (tens of milliseconds) run without the lock; the frame
   // is shared, so an eviction meanwhile does not pull it away.
@@ -168,11 +244,16 @@ StatusOr<Outcome> Session::PostOutcomeFromCloud(std::uint64_t frame_id, std::uin
                                            before->ObjectPointers(), settings_.perception.change);
   if (!evidence.ok()) return evidence.status();
   const int label = evidence->moved ? 1 : 0;
+  // What the camera saw move went with the target: learned as the client's list is (§4.5).
+  const std::vector<std::uint32_t> moved =
+      settings_.perception.change.learn_moved_object
+          ? WithDetected(alongside, evidence->moved_supervoxels)
+          : std::vector<std::uint32_t>(alongside.moved.begin(), alongside.moved.end());
 
   std::lock_guard lock(mutex_);
   if (const Outcome* answered = AnsweredLocked(request_id)) return *answered;
-  return LearnOutcomeLocked(*frame, supervoxel_id, label, request_id, std::move(evidence).value(),
-                            now_unix_ms);
+  return LearnOutcomeLocked(*frame, supervoxel_id, label, {moved, alongside.same_object},
+                            request_id, std::move(evidence).value(), now_unix_ms);
 }
 
 Status Session::CheckFeatures(const Eigen::MatrixXd& features) const {

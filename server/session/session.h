@@ -11,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,17 @@ struct Outcome {
   int label = -1;  // 0 or 1 as learned
   // Set when the label came from the change detector.
   std::optional<perception::ChangeEvidence> evidence;
+  // Of the supervoxels posted as moved with the target, those learned (the usable ones).
+  std::uint32_t moved_learned = 0;
+  // Of those posted as on the target's object, those learned.
+  std::uint32_t object_learned = 0;
+};
+
+// Other supervoxels of the frame an outcome labels beside its target (docs/method.md
+// §4.5): each one the frame has, not the target, none repeated within or across the lists.
+struct Alongside {
+  std::span<const std::uint32_t> moved;        // moved with the target: learned as moveable
+  std::span<const std::uint32_t> same_object;  // the rest of its rigid object: its label
 };
 
 // Answers a session keeps for retried requests.
@@ -111,14 +123,19 @@ class Session {
   // An unknown or evicted frame → FAILED_PRECONDITION; a supervoxel the frame does
   // not have, or one with non-finite features → INVALID_ARGUMENT. A request id
   // seen before returns the first answer and learns nothing.
+  // `alongside`: other supervoxels of the frame, each learned after the target
+  // (docs/method.md §4.5) unless its features are not finite; INVALID_ARGUMENT, and
+  // nothing learned, for one the frame does not have, a repeat or the target itself.
   StatusOr<Outcome> PostOutcome(std::uint64_t frame_id, std::uint32_t supervoxel_id, int label,
-                                const std::string& request_id, std::int64_t now_unix_ms);
+                                const std::string& request_id, std::int64_t now_unix_ms,
+                                const Alongside& alongside = {});
 
   // The same, with the label decided by the change detector (docs/method.md §5) from
   // the frame's cloud and `after`, the cloud after the push.
   StatusOr<Outcome> PostOutcomeFromCloud(std::uint64_t frame_id, std::uint32_t supervoxel_id,
                                          const perception::Cloud& after,
-                                         const std::string& request_id, std::int64_t now_unix_ms);
+                                         const std::string& request_id, std::int64_t now_unix_ms,
+                                         const Alongside& alongside = {});
 
   // Relevance and choice maps of raw feature vectors (one per row); no target is
   // drawn and nothing is learned.
@@ -152,10 +169,12 @@ class Session {
   // supervoxel `supervoxel_id`.
   StatusOr<std::shared_ptr<const CachedFrame>> FrameForOutcomeLocked(
       std::uint64_t frame_id, std::uint32_t supervoxel_id) const;
-  // Persists and learns the supervoxel's features with `label`, and remembers the
-  // answer under `request_id`.
+  // Persists and learns the supervoxel's features with `label`, then each of
+  // `alongside.moved` as moveable and of `alongside.same_object` with `label`, and
+  // remembers the answer under `request_id`.
   StatusOr<Outcome> LearnOutcomeLocked(const CachedFrame& frame, std::uint32_t supervoxel_id,
-                                       int label, const std::string& request_id,
+                                       int label, const Alongside& alongside,
+                                       const std::string& request_id,
                                        std::optional<perception::ChangeEvidence> evidence,
                                        std::int64_t now_unix_ms);
   Status CheckFeatures(const Eigen::MatrixXd& features) const;

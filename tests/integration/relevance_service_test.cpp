@@ -17,6 +17,7 @@
 #include <iterator>
 #include <numeric>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "integration/server_process.h"
@@ -59,18 +60,30 @@ class RelevanceServer : public ::testing::Test {
     return stub_->ComputeMaps(&context, request, response);
   }
 
-  grpc::Status Post(const std::string& id, const std::string& token, std::uint64_t frame,
-                    std::uint32_t supervoxel, v1::Label label, const std::string& request_id,
-                    v1::PostOutcomeResponse* response) {
-    grpc::ClientContext context;
-    Authorise(context, token);
+  static v1::PostOutcomeRequest OutcomeRequest(const std::string& id, std::uint64_t frame,
+                                               std::uint32_t supervoxel,
+                                               const std::string& request_id) {
     v1::PostOutcomeRequest request;
     request.set_session_id(id);
     request.set_frame_id(frame);
     request.set_supervoxel_id(supervoxel);
-    request.set_label(label);
     request.set_request_id(request_id);
+    return request;
+  }
+
+  grpc::Status Send(const std::string& token, const v1::PostOutcomeRequest& request,
+                    v1::PostOutcomeResponse* response) {
+    grpc::ClientContext context;
+    Authorise(context, token);
     return stub_->PostOutcome(&context, request, response);
+  }
+
+  grpc::Status Post(const std::string& id, const std::string& token, std::uint64_t frame,
+                    std::uint32_t supervoxel, v1::Label label, const std::string& request_id,
+                    v1::PostOutcomeResponse* response) {
+    v1::PostOutcomeRequest request = OutcomeRequest(id, frame, supervoxel, request_id);
+    request.set_label(label);
+    return Send(token, request, response);
   }
 
   testing::ServerProcess server_;
@@ -127,6 +140,49 @@ TEST_F(RelevanceServer, OutcomesAreLearnedOncePerRequestId) {
   EXPECT_GT(next.supervoxels(static_cast<int>(second_moveable)).relevance(), 0.5);
 }
 
+// moved_supervoxels are learned as moveable and object_supervoxels with the target's label,
+// once per request id; bad lists are INVALID_ARGUMENT and learn nothing.
+TEST_F(RelevanceServer, OutcomesLabelTheSupervoxelsNamedBesideTheTarget) {
+  const auto [id, token] = Create();
+  v1::ComputeMapsResponse maps;
+  ASSERT_TRUE(ComputeMaps(id, token, PackedTabletop(), &maps).ok());
+  ASSERT_GT(maps.supervoxels_size(), 10);
+  const auto post = [&](std::uint32_t target, v1::Label label, std::vector<std::uint32_t> moved,
+                        std::vector<std::uint32_t> same_object, const std::string& request_id,
+                        v1::PostOutcomeResponse* response) {
+    v1::PostOutcomeRequest request = OutcomeRequest(id, maps.frame_id(), target, request_id);
+    request.set_label(label);
+    request.mutable_moved_supervoxels()->Add(moved.begin(), moved.end());
+    request.mutable_object_supervoxels()->Add(same_object.begin(), same_object.end());
+    return Send(token, request, response);
+  };
+  v1::PostOutcomeResponse still;
+  ASSERT_TRUE(post(0, v1::LABEL_NOT_MOVEABLE, {1}, {2, 3}, "push-1", &still).ok());
+  EXPECT_EQ(still.moved_learned(), 1u);
+  EXPECT_EQ(still.object_learned(), 2u);
+  EXPECT_EQ(still.stats().moveable_samples(), 1u);
+  EXPECT_EQ(still.stats().non_moveable_samples(), 3u);
+  v1::PostOutcomeResponse again;
+  ASSERT_TRUE(post(0, v1::LABEL_NOT_MOVEABLE, {1}, {2, 3}, "push-1", &again).ok());
+  EXPECT_EQ(again.stats().non_moveable_samples(), 3u);
+  v1::PostOutcomeResponse moved;
+  ASSERT_TRUE(post(4, v1::LABEL_MOVEABLE, {}, {5}, "push-2", &moved).ok());
+  EXPECT_EQ(moved.stats().moveable_samples(), 3u);
+  for (const auto& [moved_ids, object_ids] :
+       {std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>>{{6}, {6}},
+        {{}, {7, 7}},
+        {{}, {4}},
+        {{}, {static_cast<std::uint32_t>(maps.supervoxels_size())}}}) {
+    v1::PostOutcomeResponse rejected;
+    EXPECT_EQ(post(4, v1::LABEL_MOVEABLE, moved_ids, object_ids, "bad", &rejected).error_code(),
+              grpc::StatusCode::INVALID_ARGUMENT);
+  }
+  v1::PostOutcomeResponse last;
+  ASSERT_TRUE(post(8, v1::LABEL_MOVEABLE, {}, {}, "push-3", &last).ok());
+  EXPECT_EQ(last.stats().moveable_samples(), 4u);
+  EXPECT_EQ(last.stats().non_moveable_samples(), 3u);
+}
+
 TEST_F(RelevanceServer, TheChangeDetectorLabelsFromTheAfterCloud) {
   // Named, not a structured binding: the lambda below captures them, which clang
   // before 16 (clang-tidy's parser here) cannot do with bindings.
@@ -171,15 +227,9 @@ TEST_F(RelevanceServer, TheChangeDetectorLabelsFromTheAfterCloud) {
 
   const auto post = [&](const v1::Cloud& cloud, const std::string& request_id,
                         v1::PostOutcomeResponse* response) {
-    grpc::ClientContext context;
-    Authorise(context, token);
-    v1::PostOutcomeRequest request;
-    request.set_session_id(id);
-    request.set_frame_id(maps.frame_id());
-    request.set_supervoxel_id(target);
+    v1::PostOutcomeRequest request = OutcomeRequest(id, maps.frame_id(), target, request_id);
     *request.mutable_after_cloud() = cloud;
-    request.set_request_id(request_id);
-    return stub_->PostOutcome(&context, request, response);
+    return Send(token, request, response);
   };
   v1::PostOutcomeResponse unchanged;
   ASSERT_TRUE(post(before, "same", &unchanged).ok());
@@ -191,7 +241,14 @@ TEST_F(RelevanceServer, TheChangeDetectorLabelsFromTheAfterCloud) {
   EXPECT_EQ(removed.label(), v1::LABEL_MOVEABLE);
   EXPECT_TRUE(removed.evidence().moved()) << removed.evidence().ShortDebugString();
   EXPECT_GT(removed.evidence().vacated_points(), 0u);
-  EXPECT_EQ(removed.stats().moveable_samples(), 1u);
+  // The detector names the other parts it saw go, each one of those taken away, and the
+  // session learns them as moveable with the target (learn_moved_object, §4.5).
+  for (const std::uint32_t moved : removed.evidence().moved_supervoxels()) {
+    EXPECT_TRUE(removed_supervoxel[moved]) << moved;
+    EXPECT_NE(moved, target);
+  }
+  EXPECT_EQ(removed.moved_learned(), removed.evidence().moved_supervoxels_size());
+  EXPECT_EQ(removed.stats().moveable_samples(), 1u + removed.moved_learned());
 }
 
 TEST_F(RelevanceServer, BadOutcomesGetPreciseStatuses) {

@@ -78,5 +78,21 @@ TEST(FeatureConfigMapping, ARadiusOutOfRangeFailsValidation) {
   EXPECT_THAT(std::string(status.message()), HasSubstr("features.fpfh_radius"));
 }
 
+// Unset: the paper's rule; set, the class-balanced one, and it survives the way back (a
+// stored session keeps its exploration).
+TEST(ExplorationConfigMapping, TheClassBalancedRuleIsKeptBothWays) {
+  StatusOr<session::SessionSettings> unset = SettingsFromProto(v1::SessionConfig());
+  ASSERT_TRUE(unset.ok()) << unset.status().message();
+  EXPECT_EQ(unset->exploration.rule, exploration::ChoiceRule::kUncertainty);
+  v1::SessionConfig config;
+  config.mutable_exploration()->set_class_balanced(true);
+  StatusOr<session::SessionSettings> balanced = SettingsFromProto(config);
+  ASSERT_TRUE(balanced.ok()) << balanced.status().message();
+  EXPECT_EQ(balanced->exploration.rule, exploration::ChoiceRule::kClassBalanced);
+  const v1::SessionConfig back = ProtoFromSettings(*balanced);
+  EXPECT_TRUE(back.exploration().class_balanced());
+  EXPECT_FALSE(ProtoFromSettings(*unset).exploration().class_balanced());
+}
+
 }  // namespace
 }  // namespace relmap::service
