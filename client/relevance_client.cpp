@@ -177,9 +177,13 @@ grpc::Status RelevanceClient::ComputeMaps(const SessionHandle& session, const v1
 grpc::Status RelevanceClient::PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
                                           std::uint32_t supervoxel_id, v1::Label label,
                                           const std::string& request_id,
-                                          v1::PostOutcomeResponse* response) {
+                                          v1::PostOutcomeResponse* response,
+                                          const std::vector<std::uint32_t>& moved_with_target,
+                                          const std::vector<std::uint32_t>& same_object) {
   v1::PostOutcomeRequest request = OutcomeRequest(session, frame_id, supervoxel_id, request_id);
   request.set_label(label);
+  request.mutable_moved_supervoxels()->Add(moved_with_target.begin(), moved_with_target.end());
+  request.mutable_object_supervoxels()->Add(same_object.begin(), same_object.end());
   return Invoke(&v1::RelevanceService::Stub::PostOutcome, request, response,
                 Idempotence::kIdempotent, SessionMetadata(session));
 }

@@ -68,9 +68,14 @@ class RelevanceClient {
   // PostOutcome and AddSamples are deduplicated by the server on `request_id`; an
   // empty one is replaced by a fresh random id, so that these calls are always safe
   // to retry. Pass your own to make a repeat after a client crash harmless too.
+  // `moved_with_target`: other supervoxels the push moved with the target, each learned
+  // as moveable (PostOutcomeRequest.moved_supervoxels); `same_object`: the rest of the
+  // target's rigid object, learned with `label` (PostOutcomeRequest.object_supervoxels).
   grpc::Status PostOutcome(const SessionHandle& session, std::uint64_t frame_id,
                            std::uint32_t supervoxel_id, v1::Label label,
-                           const std::string& request_id, v1::PostOutcomeResponse* response);
+                           const std::string& request_id, v1::PostOutcomeResponse* response,
+                           const std::vector<std::uint32_t>& moved_with_target = {},
+                           const std::vector<std::uint32_t>& same_object = {});
   // The outcome as the cloud after the push: the server's change detector labels it.
   // Either PostOutcome fails as IsFrameGone when the server has lost the frame.
   grpc::Status PostOutcome(const SessionHandle& session, std::uint64_t frame_id,

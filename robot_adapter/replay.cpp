@@ -1,6 +1,9 @@
 // Replaying a run directory into a new session.
 #include "replay.h"
 
+#include <cstdint>
+#include <vector>
+
 #include "exploration_loop.h"
 #include "grpc_status.h"
 #include "map_accuracy.h"
@@ -51,10 +54,18 @@ StatusOr<ReplayResult> ReplayRun(const std::string& run_dir, client::RelevanceCl
       replayed.accuracy =
           MapAccuracy(maps, std::vector<bool>(truth.moveable().begin(), truth.moveable().end()));
     }
+    // The parts the change detector saw move with the target were learned with it when
+    // the session's learn_moved_object was on (moved_learned > 0): the replay names them,
+    // so that it learns what the run learned.
+    std::vector<std::uint32_t> moved;
+    if (label.moved_learned() > 0) {
+      moved.assign(label.evidence().moved_supervoxels().begin(),
+                   label.evidence().moved_supervoxels().end());
+    }
     v1::PostOutcomeResponse posted;
     if (Status s = client::FromGrpc(
             client.PostOutcome(result.session, maps.frame_id(), target.supervoxel(), label.label(),
-                               OutcomeRequestId(replay_id, iteration), &posted),
+                               OutcomeRequestId(replay_id, iteration), &posted, moved),
             "PostOutcome");
         !s.ok()) {
       return s;
