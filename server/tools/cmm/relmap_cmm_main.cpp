@@ -4,8 +4,10 @@
 // latencies.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,7 +20,8 @@
 #include "common/labelled_csv.h"
 #include "common/metrics.h"
 #include "common/random.h"
-#include "exploration/choice.h"
+#include "exploration/exploration_spec.h"
+#include "exploration/frame_maps.h"
 #include "tools/cmm/latency.h"
 
 namespace relmap::tools {
@@ -28,15 +31,28 @@ constexpr std::string_view kUsage =
     "usage: relmap-cmm --train train.csv [--test test.csv]\n"
     "                  [--variant corrected|corrected_v1|paper2018 | --config SPEC]\n"
     "                  [--alpha 0.25] [--regularization 1e-6] [--seed N] [--active]\n"
-    "                  [--budget N] [--picks-out picks.txt] [--curve N [--curve-csv curve.csv]]\n"
+    "                  [--budget N] [--picks-out picks.txt] [--exploration SPEC]\n"
+    "                  [--pool-frames train.csv.frames [--moved-with-target]]\n"
+    "                  [--curve N [--curve-csv curve.csv]]\n"
     "  CSV rows: label,f1,...,fp (label 0 or 1; a header line is allowed).\n"
     "  --config   a variant with options changed, e.g. corrected:acceptance=training\n"
     "             (keys: alpha, regularization, pseudo_samples, variance_floor,\n"
     "             covariance, acceptance, overlap, prediction; see docs/method.md)\n"
     "  --active   the choice map picks each next sample from the training pool\n"
-    "  --budget   with --active: stop after N samples (default: the whole pool)\n"
+    "  --budget   with --active: stop after N picks (default: the whole pool)\n"
     "  --picks-out  with --active: write the picked training rows (0-based, in pick\n"
     "             order), so that another learner can be trained on the same samples\n"
+    "  --exploration  with --active: the choice map's options, 'paper' (default) or\n"
+    "             'novelty', 'random=0.1', 'novelty,random=0.1' (docs/method.md §4.4)\n"
+    "  --pool-frames  with --active: each row's frame (relmap-sim dataset's FILE.csv.frames);\n"
+    "             step t picks from frame t mod F's unpicked rows, as relmap-sim run picks\n"
+    "             from one frame at a time, instead of from the whole pool\n"
+    "  --moved-with-target  with --pool-frames: a moveable pick also labels the other\n"
+    "             rows of its frame that show the same body (the file's second column),\n"
+    "             as PostOutcomeRequest.moved_supervoxels does (docs/method.md §4.5)\n"
+    "  --object-labels  with --pool-frames: every pick labels those rows with its own\n"
+    "             label, as PostOutcomeRequest.object_supervoxels and relmap-sim run\n"
+    "             --labels object do\n"
     "  --curve    score the test set every N samples (a learning curve)\n"
     "  --curve-csv  also write that curve as CSV (for relmap-plot)\n";
 
@@ -47,6 +63,10 @@ struct Options {
   bool active = false;
   int budget = -1;
   std::string picks_out;
+  exploration::ExplorationConfig exploration;
+  std::string pool_frames;
+  bool moved_with_target = false;
+  bool object_labels = false;
   int curve_every = 0;
   std::string curve_csv;
 };
@@ -69,6 +89,7 @@ double ParseNumber(std::string_view flag, const char* text) {
 Options ParseArguments(int argc, char** argv) {
   Options options;
   std::string variant = "corrected";
+  std::string exploration_spec = "paper";
   std::optional<double> alpha, regularization, seed;
   for (int i = 1; i < argc; ++i) {
     const std::string_view flag = argv[i];
@@ -94,6 +115,14 @@ Options ParseArguments(int argc, char** argv) {
       options.budget = static_cast<int>(ParseNumber(flag, value()));
     else if (flag == "--picks-out")
       options.picks_out = value();
+    else if (flag == "--exploration")
+      exploration_spec = value();
+    else if (flag == "--pool-frames")
+      options.pool_frames = value();
+    else if (flag == "--moved-with-target")
+      options.moved_with_target = true;
+    else if (flag == "--object-labels")
+      options.object_labels = true;
     else if (flag == "--curve")
       options.curve_every = static_cast<int>(ParseNumber(flag, value()));
     else if (flag == "--curve-csv")
@@ -120,6 +149,17 @@ Options ParseArguments(int argc, char** argv) {
     Fail("--curve and --budget must be positive");
   }
   if (!options.picks_out.empty() && !options.active) Fail("--picks-out needs --active");
+  if (!options.pool_frames.empty() && !options.active) Fail("--pool-frames needs --active");
+  if ((options.moved_with_target || options.object_labels) && options.pool_frames.empty()) {
+    Fail("--moved-with-target and --object-labels need --pool-frames");
+  }
+  if (exploration_spec != "paper" && !options.active) Fail("--exploration needs --active");
+  options.exploration = exploration::ExplorationConfig::ForVariant(options.config.variant);
+  if (const Status status =
+          exploration::ApplyExplorationSpec(exploration_spec, options.exploration);
+      !status.ok()) {
+    Fail(status.message());
+  }
   if (!options.curve_csv.empty() && (options.curve_every == 0 || options.test.empty())) {
     Fail("--curve-csv needs --curve N and --test");
   }
@@ -268,35 +308,96 @@ class Run {
     }
   }
 
-  // The paper's exploration on a fixed pool: each step scores the remaining
-  // samples, builds the choice map and lets it pick the next one to label.
+  // The paper's exploration on a fixed pool: each step maps the remaining
+  // samples (of the step's frame, with --pool-frames) and lets the choice map
+  // pick the next one to label.
   void ExploreThePool() {
-    std::vector<int> pool(static_cast<std::size_t>(train_.features.rows()));
-    for (std::size_t i = 0; i < pool.size(); ++i) pool[i] = static_cast<int>(i);
-    const auto exploration = exploration::ExplorationConfig::ForVariant(options_.config.variant);
+    std::vector<std::vector<int>> pools = Pools();
+    std::size_t remaining = 0;
+    for (const auto& pool : pools) remaining += pool.size();
     const int budget = options_.budget > 0
-                           ? std::min<int>(options_.budget, static_cast<int>(pool.size()))
-                           : static_cast<int>(pool.size());
+                           ? std::min<int>(options_.budget, static_cast<int>(remaining))
+                           : static_cast<int>(remaining);
     Eigen::MatrixXd candidates;
-    for (int step = 0; step < budget; ++step) {
+    std::size_t frame = 0;
+    const auto all_empty = [&] {
+      return std::all_of(pools.begin(), pools.end(), [](const auto& p) { return p.empty(); });
+    };
+    for (int step = 0; step < budget && !all_empty(); ++step) {
+      while (pools[frame].empty()) frame = (frame + 1) % pools.size();
+      std::vector<int>& pool = pools[frame];
       const int pick = choice_.Time([&] {
         candidates.resize(static_cast<Eigen::Index>(pool.size()), train_.features.cols());
         for (std::size_t j = 0; j < pool.size(); ++j) {
           candidates.row(static_cast<Eigen::Index>(j)) = train_.features.row(pool[j]);
         }
-        const cmm::Evaluation e = model_.Evaluate(candidates);
-        const Eigen::VectorXd u =
-            exploration::UncertaintyMap(e.relevance, model_.sample_count(1), model_.sample_count(0),
-                                        exploration.uncertainty_bug);
-        const Eigen::VectorXd choice = exploration::ChoiceMap(
-            u, exploration::Confidence(e, exploration.confidence), exploration.paper_choice_quirks);
-        return exploration::DrawTarget(choice, step, exploration.paper_choice_quirks, sampler_);
+        return exploration::ComputeFrameMaps(model_, candidates, options_.exploration, step,
+                                             &sampler_)
+            .target;
       });
-      picks_.push_back(pool[static_cast<std::size_t>(pick)]);
-      Learn(picks_.back());
+      const int row = pool[static_cast<std::size_t>(pick)];
+      picks_.push_back(row);
+      Learn(row);
       pool[static_cast<std::size_t>(pick)] = pool.back();
       pool.pop_back();
+      if (options_.object_labels ||
+          (options_.moved_with_target && train_.labels[static_cast<std::size_t>(row)] == 1)) {
+        LearnTheRestOfItsBody(row, pool);
+      }
+      frame = (frame + 1) % pools.size();
     }
+  }
+
+  // The other rows of `row`'s frame pool that show its body, learned (with the label
+  // they share with it) and taken out of the pool, in row order.
+  void LearnTheRestOfItsBody(int row, std::vector<int>& pool) {
+    const int body = bodies_[static_cast<std::size_t>(row)];
+    if (body < 0) return;
+    std::vector<int> same;
+    std::erase_if(pool, [&](int other) {
+      const bool match = bodies_[static_cast<std::size_t>(other)] == body;
+      if (match) same.push_back(other);
+      return match;
+    });
+    std::sort(same.begin(), same.end());
+    for (const int other : same) {
+      picks_.push_back(other);
+      Learn(other);
+    }
+  }
+
+  // The candidate rows per frame in frame order: one pool of every row without
+  // --pool-frames.
+  std::vector<std::vector<int>> Pools() {
+    const auto rows = static_cast<int>(train_.features.rows());
+    if (options_.pool_frames.empty()) {
+      std::vector<int> all(static_cast<std::size_t>(rows));
+      for (int i = 0; i < rows; ++i) all[static_cast<std::size_t>(i)] = i;
+      return {all};
+    }
+    std::FILE* file = std::fopen(options_.pool_frames.c_str(), "r");
+    if (file == nullptr) Fail("cannot read " + options_.pool_frames);
+    std::map<long, std::vector<int>> by_frame;
+    char line[64];
+    int row = 0;
+    while (std::fgets(line, sizeof line, file) != nullptr) {
+      char* end = nullptr;
+      const long frame = std::strtol(line, &end, 10);
+      if (end == line) continue;  // the header
+      if (row >= rows) break;
+      // "frame,body" since relmap-sim dataset writes bodies; "frame" before.
+      bodies_.push_back(*end == ',' ? static_cast<int>(std::strtol(end + 1, nullptr, 10)) : -1);
+      by_frame[frame].push_back(row++);
+    }
+    std::fclose(file);
+    if (row != rows) {
+      Fail(fmt::format("{} gives a frame for {} rows, {} has {}", options_.pool_frames, row,
+                       options_.train, rows));
+    }
+    std::vector<std::vector<int>> pools;
+    pools.reserve(by_frame.size());
+    for (auto& [frame, members] : by_frame) pools.push_back(std::move(members));
+    return pools;
   }
 
   LatencyRecorder& PredictLatencyOn(const datasets::LabelledSamples& samples) {
@@ -315,7 +416,8 @@ class Run {
   Random sampler_;
   LatencyRecorder update_, predict_, choice_;
   std::vector<CurvePoint> curve_;
-  std::vector<int> picks_;  // --active: the rows picked, in order
+  std::vector<int> picks_;   // --active: the rows picked, in order
+  std::vector<int> bodies_;  // --pool-frames: each row's body, -1 for none
 };
 
 }  // namespace

@@ -56,6 +56,55 @@ else
   failures=$((failures + 1))
 fi
 
+# Frames: rows 0-99 frame 1, 100-199 frame 2, 200-299 frame 3; each frame's rows in
+# bodies of 10 (body = row / 10).
+{ echo "frame,body"; for i in $(seq 0 299); do echo "$((i / 100 + 1)),$((i / 10))"; done; } >"$dir/train.csv.frames"
+expect frames-need-active 2 "--pool-frames needs --active" "$cmm" --train "$dir/train.csv" --pool-frames "$dir/train.csv.frames"
+expect moved-needs-frames 2 "--moved-with-target and --object-labels need --pool-frames" "$cmm" --train "$dir/train.csv" --active --moved-with-target
+expect exploration-needs-active 2 "--exploration needs --active" "$cmm" --train "$dir/train.csv" --exploration novelty
+expect bad-exploration 2 "is not one of paper | balanced | novelty | random" "$cmm" --train "$dir/train.csv" --active --exploration greedy
+expect novelty 0 '"mode":"active"' "$cmm" --train "$dir/train.csv" --active --budget 20 --exploration novelty,random=0.1
+"$cmm" --train "$dir/train.csv" --active --budget 6 --seed 3 --pool-frames "$dir/train.csv.frames" \
+  --picks-out "$dir/frame-picks.txt" >/dev/null
+# One frame at a time, in turn: picks 1 and 4 from frame 1, 2 and 5 from frame 2, ...
+if [ "$(awk '{ printf "%d", int($1 / 100) + 1 }' "$dir/frame-picks.txt")" = 123123 ]; then
+  echo "ok   pool-frames"
+else
+  echo "FAIL pool-frames: $(tr '\n' ' ' <"$dir/frame-picks.txt")"
+  failures=$((failures + 1))
+fi
+# Bodies as relmap-sim dataset writes them: a moveable row shows body row / 10, a
+# background row none (-1).
+awk -F, 'NR > 1 { print int((NR - 2) / 100) + 1 "," ($1 == 1 ? int((NR - 2) / 10) : -1) }
+  NR == 1 { print "frame,body" }' "$dir/train.csv" >"$dir/bodies.frames"
+"$cmm" --train "$dir/train.csv" --active --budget 30 --seed 3 --pool-frames "$dir/bodies.frames" \
+  --moved-with-target --picks-out "$dir/body-picks.txt" >/dev/null
+# 30 picks; a moveable one brings every other row of its body at once, so each body's
+# rows come together and the file has more than 30 distinct rows.
+if [ "$(sort -u "$dir/body-picks.txt" | wc -l)" -eq "$(wc -l <"$dir/body-picks.txt")" ] &&
+  [ "$(wc -l <"$dir/body-picks.txt")" -gt 30 ] &&
+  awk -F, 'NR == FNR { if (FNR > 1) body[FNR - 2] = $2; next }
+    { b = body[$1] } b >= 0 && b in done { exit 1 } b != last && last >= 0 { done[last] = 1 }
+    { last = b }' "$dir/bodies.frames" "$dir/body-picks.txt"; then
+  echo "ok   moved-with-target"
+else
+  echo "FAIL moved-with-target: $(tr '\n' ' ' <"$dir/body-picks.txt")"
+  failures=$((failures + 1))
+fi
+# --object-labels: every pick, moveable or not, brings the rest of its body (here every
+# row is on body row / 10): 30 picks are the 30 bodies, ten rows each, one body at a time.
+awk -F, 'NR > 1 { print int((NR - 2) / 100) + 1 "," int((NR - 2) / 10) }
+  NR == 1 { print "frame,body" }' "$dir/train.csv" >"$dir/all-bodies.frames"
+"$cmm" --train "$dir/train.csv" --active --budget 30 --seed 3 \
+  --pool-frames "$dir/all-bodies.frames" --object-labels --picks-out "$dir/object-picks.txt" >/dev/null
+if [ "$(sort -u "$dir/object-picks.txt" | wc -l)" -eq 300 ] &&
+  awk '{ b = int($1 / 10) } NR % 10 == 1 { first = b } b != first { exit 1 }' "$dir/object-picks.txt"; then
+  echo "ok   object-labels"
+else
+  echo "FAIL object-labels: $(tr '\n' ' ' <"$dir/object-picks.txt")"
+  failures=$((failures + 1))
+fi
+
 # Same seed, same report (latencies aside).
 a=$("$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --active --seed 9 | sed 's/"latency_us".*"curve"/"curve"/')
 b=$("$cmm" --train "$dir/train.csv" --test "$dir/test.csv" --active --seed 9 | sed 's/"latency_us".*"curve"/"curve"/')
