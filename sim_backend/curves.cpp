@@ -27,7 +27,7 @@ const char kIterationCsvHeader[] =
     "change_vacated_beyond_motion_points,change_object_vacated_beyond_motion_points,"
     "change_object_motion_fitted,change_object_motion_translation_m,"
     "change_carried_supported_points,change_carried_vacated_points,"
-    "change_carried_occluded_points";
+    "change_carried_occluded_points,moved_learned,moved_mislabelled";
 
 namespace {
 
@@ -98,6 +98,9 @@ void WriteConfig(const ExperimentOptions& options, const RunFacts& facts, JsonWr
   json.Key("variant").String(VariantName(options.variant));
   json.Key("alpha").Number(options.alpha);
   json.Key("sampling").String(SamplingName(options.sampling));
+  json.Key("labels").String(LabelScopeName(options.labels));
+  json.Key("novelty").Boolean(options.novelty);
+  json.Key("random_share").Number(options.random_share);
   json.Key("change_method").String(ChangeMethodName(options.change_method));
   json.Key("resolution");
   if (options.resolution) {
@@ -144,6 +147,8 @@ void WriteReplicationJson(const ReplicationResult& r, const ExperimentOptions& o
     json.Key("moveable_components").Integer(last->model.moveable_components);
     json.Key("non_moveable_components").Integer(last->model.non_moveable_components);
     json.Key("mislabelled").Unsigned(last->mislabelled);
+    json.Key("moved_learned").Unsigned(last->moved_learned);
+    json.Key("moved_mislabelled").Unsigned(last->moved_mislabelled);
     json.EndObject();
   }
   // Failed: ran to the end with a final thresholded accuracy below the bound; null
@@ -263,6 +268,7 @@ void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out) 
     } else {
       out << ",,,,,,,,,,,,";
     }
+    out << ',' << i.moved_learned << ',' << i.moved_mislabelled;
     out << '\n';
   }
 }

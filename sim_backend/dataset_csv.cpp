@@ -21,10 +21,10 @@ Status WriteDataset(const std::vector<DatasetRow>& rows, const std::string& csv_
   std::ofstream csv(csv_path, std::ios::binary | std::ios::trunc);
   std::ofstream frames(frames_path, std::ios::binary | std::ios::trunc);
   datasets::WriteLabelledCsvHeader(rows.empty() ? 0 : rows.front().features.size(), csv);
-  frames << "frame\n";
+  frames << "frame,body,object\n";
   for (const DatasetRow& row : rows) {
     datasets::WriteLabelledCsvRow(row.moveable ? 1 : 0, row.features, csv);
-    frames << row.frame << '\n';
+    frames << row.frame << ',' << row.body << ',' << row.object << '\n';
   }
   if (Status status = Written(csv, csv_path); !status.ok()) return status;
   return Written(frames, frames_path);

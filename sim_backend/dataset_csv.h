@@ -12,7 +12,9 @@ namespace relmap::sim {
 
 // `csv_path`: a header "label,f1,...,fp", then per row its label (0/1) and features,
 // each printed in the shortest form that reads back to the same double. `frames_path`:
-// a header "frame", then per row, in the same order, its frame. The frame stays out
+// a header "frame,body,object", then per row, in the same order, its frame, the body it
+// shows (DatasetRow::body; -1 for none) and the object the server sees it on
+// (DatasetRow::object). Both stay out
 // of the CSV because every column after the label is a feature to its readers.
 // INTERNAL naming the file when one cannot be written.
 Status WriteDataset(const std::vector<DatasetRow>& rows, const std::string& csv_path,

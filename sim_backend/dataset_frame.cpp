@@ -29,6 +29,8 @@ StatusOr<LabelledFrame> LabelFrame(SimulatedScene& scene, client::RelevanceClien
   StatusOr<std::vector<bool>> object = SupervoxelGroundTruth(
       captured, maps, [&scene](std::int32_t body) { return scene.IsMoveable(body); });
   if (!object.ok()) return object.status();
+  StatusOr<std::vector<std::int32_t>> bodies = SupervoxelBodies(captured, maps);
+  if (!bodies.ok()) return bodies.status();
 
   LabelledFrame labelled;
   labelled.server_ms = maps.timings().total_ms();
@@ -45,8 +47,12 @@ StatusOr<LabelledFrame> LabelFrame(SimulatedScene& scene, client::RelevanceClien
       ++labelled.non_finite;
       continue;
     }
-    labelled.rows.push_back(
-        {frame, (*object)[static_cast<std::size_t>(i)], {features.begin(), features.end()}});
+    const auto index = static_cast<std::size_t>(i);
+    labelled.rows.push_back({frame,
+                             (*object)[index],
+                             (*bodies)[index],
+                             maps.supervoxels(i).object(),
+                             {features.begin(), features.end()}});
   }
   return labelled;
 }

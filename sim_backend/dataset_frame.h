@@ -16,6 +16,12 @@ namespace relmap::sim {
 struct DatasetRow {
   int frame = 0;
   bool moveable = false;  // ground_truth.h: >= 50 % of its points on a moveable body
+  // The body that >= 50 % of its points hit, or kNoBody (ground_truth.h): the rows of one
+  // frame with the same body show one object, which a push moves as a whole.
+  std::int32_t body = kNoBody;
+  // The object the server sees it on (Supervoxel.object): what a push would move with it,
+  // as far as the frame's geometry tells.
+  std::uint32_t object = 0;
   std::vector<double> features;
 };
 

@@ -19,7 +19,9 @@ constexpr std::string_view kRunFlags[] = {"scene",         "mode",
                                           "variant",       "alpha",
                                           "sampling",      "parallel",
                                           "snapshots",     "change-min-neighbours",
-                                          "resolution",    "change-method"};
+                                          "resolution",    "change-method",
+                                          "labels",        "novelty",
+                                          "random-share",  "class-balanced"};
 
 // "1,10,100": iterations in [1, iterations], sorted, without repeats.
 StatusOr<std::vector<int>> SnapshotList(const std::string& text, int iterations) {
@@ -46,6 +48,9 @@ constexpr Words<LabellingMode> kModes = {
     {{LabellingMode::kOracle, "oracle"}, {LabellingMode::kPhysical, "physical"}}};
 constexpr Words<TargetSampling> kSamplings = {
     {{TargetSampling::kChoice, "choice"}, {TargetSampling::kRandom, "random"}}};
+constexpr Words<LabelScope> kLabelScopes = {
+    {{LabelScope::kTarget, "target"}, {LabelScope::kObject, "object"}}};
+constexpr Words<bool> kOnOff = {{{true, "on"}, {false, "off"}}};
 constexpr Words<v1::ChangeMethod> kChangeMethods = {
     {{v1::CHANGE_METHOD_VISIBILITY, "visibility"}, {v1::CHANGE_METHOD_PAPER2018, "paper2018"}}};
 constexpr Words<v1::ClassifierVariant, 3> kVariants = {
@@ -95,6 +100,8 @@ const char kRunUsage[] =
     "                      [--sampling choice|random] [--parallel 2]\n"
     "                      [--snapshots 1,10,100|none] [--change-min-neighbours N]\n"
     "                      [--resolution WxH] [--change-method visibility|paper2018]\n"
+    "                      [--labels target|object] [--novelty on|off] [--random-share E]\n"
+    "                      [--class-balanced on|off]\n"
     "  --mode        oracle: every object re-spawned each iteration, the target labelled\n"
     "                with its ground truth (the paper's simplified setup); physical: the\n"
     "                push happens and the server's change detector labels it\n"
@@ -105,6 +112,16 @@ const char kRunUsage[] =
     "  --alpha       the tolerance-ellipsoid significance level (default: the server's 0.25)\n"
     "  --sampling    choice: the server's draw from its choice map; random: uniform over\n"
     "                the usable supervoxels\n"
+    "  --labels      target: the pushed supervoxel alone (default, the paper's protocol);\n"
+    "                object: also the rest of its object: in oracle mode the target's\n"
+    "                whole body with its label, as PostOutcomeRequest.object_supervoxels; in\n"
+    "                physical mode what the change detector saw move with the target\n"
+    "                (ChangeDetectorConfig.learn_moved_object)\n"
+    "  --novelty     the session's choice map weighs supervoxels by their novelty\n"
+    "  --random-share  the share of the choice map drawn uniformly, in [0, 1] (0)\n"
+    "  --class-balanced  on: the session draws half its pushes among what it thinks\n"
+    "                moveable and half among the rest (ExplorationConfig.class_balanced);\n"
+    "                default: the server's\n"
     "  --parallel    replications run at once, each its own session (default 2)\n"
     "  --snapshots   iterations whose relevance and choice maps are saved as PNGs\n"
     "                (default 1, 10, 100, ... and the last)\n"
@@ -149,17 +166,10 @@ StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* 
   if (Status read = ReadServerFlags(*flags, &options.server, &options.server_binary); !read.ok()) {
     return read;
   }
-  if (Status parsed = ParseWord("variant", value("variant"), kVariants, &options.variant);
-      !parsed.ok()) {
-    return parsed;
-  }
   if (const std::string* alpha = value("alpha")) {
-    char* end = nullptr;
-    const double parsed = std::strtod(alpha->c_str(), &end);
-    if (alpha->empty() || *end != '\0' || !(parsed >= 0.0 && parsed <= 1.0)) {
-      return FlagError("alpha", "expects a number in [0, 1], got '" + *alpha + "'");
-    }
-    options.alpha = parsed;
+    StatusOr<double> parsed = ParseUnitInterval("alpha", *alpha);
+    if (!parsed.ok()) return parsed.status();
+    options.alpha = *parsed;
   }
   if (const std::string* neighbours = value("change-min-neighbours")) {
     char* end = nullptr;
@@ -175,14 +185,26 @@ StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* 
     if (!parsed.ok()) return parsed.status();
     options.resolution = *parsed;
   }
-  if (Status parsed = ParseWord("change-method", value("change-method"), kChangeMethods,
-                                &options.change_method);
-      !parsed.ok()) {
-    return parsed;
+  // The word flags, each checked against its list; the first bad one is reported.
+  for (const Status& parsed :
+       {ParseWord("variant", value("variant"), kVariants, &options.variant),
+        ParseWord("change-method", value("change-method"), kChangeMethods, &options.change_method),
+        ParseWord("sampling", value("sampling"), kSamplings, &options.sampling),
+        ParseWord("labels", value("labels"), kLabelScopes, &options.labels),
+        ParseWord("novelty", value("novelty"), kOnOff, &options.novelty)}) {
+    if (!parsed.ok()) return parsed;
   }
-  if (Status parsed = ParseWord("sampling", value("sampling"), kSamplings, &options.sampling);
-      !parsed.ok()) {
-    return parsed;
+  if (const std::string* balanced = value("class-balanced")) {
+    bool on = false;
+    if (Status parsed = ParseWord("class-balanced", balanced, kOnOff, &on); !parsed.ok()) {
+      return parsed;
+    }
+    options.class_balanced = on;
+  }
+  if (const std::string* share = value("random-share")) {
+    StatusOr<double> parsed = ParseUnitInterval("random-share", *share);
+    if (!parsed.ok()) return parsed.status();
+    options.random_share = *parsed;
   }
   if (const std::string* snapshots = value("snapshots"); snapshots && *snapshots == "none") {
     options.snapshots.clear();
@@ -199,6 +221,8 @@ StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* 
 const char* ModeName(LabellingMode mode) { return WordOf(kModes, mode); }
 
 const char* SamplingName(TargetSampling sampling) { return WordOf(kSamplings, sampling); }
+
+const char* LabelScopeName(LabelScope labels) { return WordOf(kLabelScopes, labels); }
 
 const char* VariantName(v1::ClassifierVariant variant) { return WordOf(kVariants, variant); }
 

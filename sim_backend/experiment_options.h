@@ -30,6 +30,16 @@ enum class TargetSampling {
   kRandom,  // a uniform draw over the usable supervoxels, with the runner's seeded RNG
 };
 
+// What a push labels.
+enum class LabelScope {
+  kTarget,  // the target alone (the paper's protocol)
+  // Oracle: every other supervoxel of the target's body, with its label
+  // (object_supervoxels);
+  // physical: the target and what the change detector saw move with it
+  // (ChangeDetectorConfig.learn_moved_object).
+  kObject,
+};
+
 struct ExperimentOptions {
   std::string scene;  // a scene name or a scene file
   LabellingMode mode = LabellingMode::kOracle;
@@ -45,6 +55,11 @@ struct ExperimentOptions {
   v1::ClassifierVariant variant = v1::CLASSIFIER_VARIANT_CORRECTED;
   std::optional<double> alpha;  // unset: the server's default (0.25)
   TargetSampling sampling = TargetSampling::kChoice;
+  LabelScope labels = LabelScope::kTarget;
+  // The session's exploration (SessionConfig.exploration); unset: the server's default.
+  bool novelty = false;
+  std::optional<double> random_share;
+  std::optional<bool> class_balanced;
   // Physical mode: the change detector's radius filter keeps points with at least this
   // many neighbours within 1 cm (docs/method.md §5, 20 for a 640×480 Kinect). Unset: 20
   // scaled by the camera's point density, (width / 640)², at least 3.
@@ -70,6 +85,7 @@ StatusOr<ExperimentOptions> ParseExperimentOptions(int argc, const char* const* 
 // The names the summary uses for the enums.
 const char* ModeName(LabellingMode mode);
 const char* SamplingName(TargetSampling sampling);
+const char* LabelScopeName(LabelScope labels);
 const char* VariantName(v1::ClassifierVariant variant);
 const char* ChangeMethodName(v1::ChangeMethod method);
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
 
 namespace relmap::sim {
 
@@ -79,6 +80,15 @@ StatusOr<std::uint64_t> ParseUnsigned(std::string_view flag, const std::string& 
     return FlagError(flag, "expects a whole number >= 0, got '" + text + "'");
   }
   return value;
+}
+
+StatusOr<double> ParseUnitInterval(std::string_view flag, const std::string& text) {
+  char* end = nullptr;
+  const double parsed = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(parsed >= 0.0 && parsed <= 1.0)) {
+    return FlagError(flag, "expects a number in [0, 1], got '" + text + "'");
+  }
+  return parsed;
 }
 
 StatusOr<ImageSize> ParseResolution(const std::string& text) {

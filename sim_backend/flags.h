@@ -44,6 +44,9 @@ StatusOr<long long> ParseInteger(std::string_view flag, const std::string& text,
 // A whole number >= 0.
 StatusOr<std::uint64_t> ParseUnsigned(std::string_view flag, const std::string& text);
 
+// A number in [0, 1].
+StatusOr<double> ParseUnitInterval(std::string_view flag, const std::string& text);
+
 // --resolution "640x480": both sides in [1, 4096], the limits of `relmap-sim render`.
 StatusOr<ImageSize> ParseResolution(const std::string& text);
 

@@ -22,11 +22,10 @@ Status CheckLabelsMatch(const CameraFrame& frame, const v1::ComputeMapsResponse&
   return OkStatus();
 }
 
-}  // namespace
-
-StatusOr<std::vector<bool>> SupervoxelGroundTruth(
-    const CameraFrame& frame, const v1::ComputeMapsResponse& maps,
-    const std::function<bool(std::int32_t body_id)>& is_moveable) {
+// Per point of the frame, the index in maps.supervoxels() of its supervoxel, or -1 for
+// a point the server left out.
+StatusOr<std::vector<int>> PointSupervoxels(const CameraFrame& frame,
+                                            const v1::ComputeMapsResponse& maps) {
   if (Status status = CheckLabelsMatch(frame, maps); !status.ok()) return status;
   const auto& labels = maps.point_labels();
   // Supervoxel ids are small (0, 1, ... per frame): index them through a vector.
@@ -36,8 +35,7 @@ StatusOr<std::vector<bool>> SupervoxelGroundTruth(
     if (id >= index_of_id.size()) index_of_id.resize(id + 1, -1);
     index_of_id[id] = i;
   }
-  std::vector<std::size_t> points(static_cast<std::size_t>(maps.supervoxels_size()), 0);
-  std::vector<std::size_t> on_moveable(points.size(), 0);
+  std::vector<int> index(frame.points.size(), -1);
   for (std::size_t p = 0; p < frame.points.size(); ++p) {
     const std::int32_t label = labels[static_cast<int>(p)];
     if (label < 0) continue;
@@ -46,10 +44,26 @@ StatusOr<std::vector<bool>> SupervoxelGroundTruth(
       return InvalidArgumentError("point " + std::to_string(p) + " has supervoxel " +
                                   std::to_string(label) + ", which the maps do not list");
     }
-    const auto i = static_cast<std::size_t>(index_of_id[id]);
-    ++points[i];
+    index[p] = index_of_id[id];
+  }
+  return index;
+}
+
+}  // namespace
+
+StatusOr<std::vector<bool>> SupervoxelGroundTruth(
+    const CameraFrame& frame, const v1::ComputeMapsResponse& maps,
+    const std::function<bool(std::int32_t body_id)>& is_moveable) {
+  auto index = PointSupervoxels(frame, maps);
+  if (!index.ok()) return index.status();
+  std::vector<std::size_t> points(static_cast<std::size_t>(maps.supervoxels_size()), 0);
+  std::vector<std::size_t> on_moveable(points.size(), 0);
+  for (std::size_t p = 0; p < frame.points.size(); ++p) {
+    const int i = (*index)[p];
+    if (i < 0) continue;
+    ++points[static_cast<std::size_t>(i)];
     const std::int32_t body = frame.body_ids[p];
-    if (body != kNoBody && is_moveable(body)) ++on_moveable[i];
+    if (body != kNoBody && is_moveable(body)) ++on_moveable[static_cast<std::size_t>(i)];
   }
   std::vector<bool> object(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -57,6 +71,40 @@ StatusOr<std::vector<bool>> SupervoxelGroundTruth(
                                      kObjectFraction * static_cast<double>(points[i]);
   }
   return object;
+}
+
+StatusOr<std::vector<std::int32_t>> SupervoxelBodies(const CameraFrame& frame,
+                                                     const v1::ComputeMapsResponse& maps) {
+  auto index = PointSupervoxels(frame, maps);
+  if (!index.ok()) return index.status();
+  // Boyer–Moore majority vote per supervoxel, then a count to confirm it.
+  const auto n = static_cast<std::size_t>(maps.supervoxels_size());
+  std::vector<std::int32_t> candidate(n, kNoBody);
+  std::vector<std::size_t> votes(n, 0), points(n, 0), on_candidate(n, 0);
+  for (std::size_t p = 0; p < frame.points.size(); ++p) {
+    if ((*index)[p] < 0) continue;
+    const auto i = static_cast<std::size_t>((*index)[p]);
+    ++points[i];
+    if (votes[i] == 0) candidate[i] = frame.body_ids[p];
+    if (candidate[i] == frame.body_ids[p]) {
+      ++votes[i];
+    } else {
+      --votes[i];
+    }
+  }
+  for (std::size_t p = 0; p < frame.points.size(); ++p) {
+    if ((*index)[p] < 0) continue;
+    const auto i = static_cast<std::size_t>((*index)[p]);
+    on_candidate[i] += candidate[i] == frame.body_ids[p] ? 1 : 0;
+  }
+  std::vector<std::int32_t> bodies(n, kNoBody);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (points[i] > 0 &&
+        static_cast<double>(on_candidate[i]) >= kObjectFraction * static_cast<double>(points[i])) {
+      bodies[i] = candidate[i];
+    }
+  }
+  return bodies;
 }
 
 StatusOr<SupervoxelDisplacement> DisplacementOf(const CameraFrame& frame,

@@ -27,6 +27,13 @@ StatusOr<std::vector<bool>> SupervoxelGroundTruth(
     const CameraFrame& frame, const v1::ComputeMapsResponse& maps,
     const std::function<bool(std::int32_t body_id)>& is_moveable);
 
+// Per supervoxel of `maps`, in the order of maps.supervoxels(): the body that at least
+// kObjectFraction of its points hit, or kNoBody (no such body, or no points). Which
+// supervoxels show the same object: those a push of one of them moves with it.
+// INVALID_ARGUMENT as SupervoxelGroundTruth.
+StatusOr<std::vector<std::int32_t>> SupervoxelBodies(const CameraFrame& frame,
+                                                     const v1::ComputeMapsResponse& maps);
+
 // What a push did to the points of one supervoxel: each point moved with the body its
 // ray hit (PushReport::body_motions).
 struct SupervoxelDisplacement {

@@ -51,6 +51,10 @@ struct IterationRecord {
   std::optional<bool> truth;
   // Learned labels that differ from the ground truth of their target, so far.
   std::uint64_t mislabelled = 0;
+  // Supervoxels learned beside their target (--labels object), so far, and of those the
+  // change detector saw move (physical mode), the ones whose ground truth is not moveable.
+  std::uint64_t moved_learned = 0;
+  std::uint64_t moved_mislabelled = 0;
   ModelCounts model;
   // Physical mode with a target: what the simulator says the push did.
   std::optional<PushReport> push;

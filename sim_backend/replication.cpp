@@ -83,9 +83,16 @@ class Replication {
     config.set_seed(seed_);
     config.mutable_classifier()->set_variant(options_.variant);
     if (options_.alpha) config.mutable_classifier()->set_alpha(*options_.alpha);
+    config.mutable_exploration()->set_novelty(options_.novelty);
+    if (options_.random_share)
+      config.mutable_exploration()->set_random_share(*options_.random_share);
+    if (options_.class_balanced) {
+      config.mutable_exploration()->set_class_balanced(*options_.class_balanced);
+    }
     if (options_.mode == LabellingMode::kPhysical) {
       v1::ChangeDetectorConfig& change = *config.mutable_change_detector();
       change.set_method(options_.change_method);
+      change.set_learn_moved_object(options_.labels == LabelScope::kObject);
       change.set_ror_min_neighbours(
           options_.change_min_neighbours.value_or(ScaledMinNeighbours(scene_.Capture().width)));
       // The server judges depths by the noise of the camera that took them.
@@ -153,11 +160,12 @@ class Replication {
     }
 
     if (target->has_value()) {
-      status = LabelAndLearn(iteration, frame, maps, **target,
-                             (*object)[static_cast<std::size_t>(**target)], &record);
+      status = LabelAndLearn(iteration, frame, maps, **target, *object, &record);
       if (!status.ok()) return status;
     }
     record.mislabelled = mislabelled_;
+    record.moved_learned = moved_learned_;
+    record.moved_mislabelled = moved_mislabelled_;
     record.model = model_;
     t.iteration_ms = MillisecondsSince(start);
     return record;
@@ -186,20 +194,28 @@ class Replication {
   }
 
   // Pushes (physical) and posts the outcome of supervoxel `index` of `maps` (computed on
-  // `frame`), whose ground truth is `truth`. A push the simulator could not execute (every approach
-  // blocked) says nothing about the target: no outcome is posted for it.
+  // `frame`), whose supervoxels' ground truth is `moveable`. A push the simulator could not
+  // execute (every approach blocked) says nothing about the target: no outcome is posted
+  // for it.
   Status LabelAndLearn(int iteration, const CameraFrame& frame, const v1::ComputeMapsResponse& maps,
-                       int index, bool truth, IterationRecord* record) {
+                       int index, const std::vector<bool>& moveable, IterationRecord* record) {
     const v1::Supervoxel& target = maps.supervoxels(index);
+    const bool truth = moveable[static_cast<std::size_t>(index)];
     record->target = target.id();
     const std::string request_id = RequestId(replication_, iteration);
     v1::PostOutcomeResponse response;
     grpc::Status posted;
     if (options_.mode == LabellingMode::kOracle) {
       const Clock::time_point stage = Clock::now();
+      std::vector<std::uint32_t> same_object;
+      if (options_.labels == LabelScope::kObject) {
+        StatusOr<std::vector<std::uint32_t>> same = SameBody(frame, maps, index);
+        if (!same.ok()) return same.status();
+        same_object = std::move(same).value();
+      }
       posted = client_.PostOutcome(session_, maps.frame_id(), target.id(),
                                    truth ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE, request_id,
-                                   &response);
+                                   &response, {}, same_object);
       record->timings.outcome_ms = MillisecondsSince(stage);
     } else {
       Clock::time_point stage = Clock::now();
@@ -230,8 +246,32 @@ class Replication {
     record->label = label;
     record->truth = truth;
     if (label != truth) ++mislabelled_;
+    // Physical mode names what the detector saw move; oracle mode's are the true body.
+    moved_learned_ += response.moved_learned() + response.object_learned();
+    for (const std::uint32_t id : response.evidence().moved_supervoxels()) {
+      moved_mislabelled_ += !moveable[id];
+    }
     model_ = CountsOf(response.stats());
     return OkStatus();
+  }
+
+  // The ids of the other supervoxels of `maps` that show the body supervoxel `index`
+  // shows (ground_truth.h): what a push of it moves with it. None when it shows no
+  // single body.
+  static StatusOr<std::vector<std::uint32_t>> SameBody(const CameraFrame& frame,
+                                                       const v1::ComputeMapsResponse& maps,
+                                                       int index) {
+    StatusOr<std::vector<std::int32_t>> bodies = SupervoxelBodies(frame, maps);
+    if (!bodies.ok()) return bodies.status();
+    const std::int32_t body = (*bodies)[static_cast<std::size_t>(index)];
+    std::vector<std::uint32_t> same;
+    if (body == kNoBody) return same;
+    for (int j = 0; j < maps.supervoxels_size(); ++j) {
+      if (j != index && (*bodies)[static_cast<std::size_t>(j)] == body) {
+        same.push_back(maps.supervoxels(j).id());
+      }
+    }
+    return same;
   }
 
   const ExperimentOptions& options_;
@@ -242,6 +282,8 @@ class Replication {
   client::SessionHandle session_;
   std::optional<CameraFrame> after_push_;
   std::uint64_t mislabelled_ = 0;
+  std::uint64_t moved_learned_ = 0;
+  std::uint64_t moved_mislabelled_ = 0;
   ModelCounts model_;
 };
 

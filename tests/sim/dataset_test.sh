@@ -33,7 +33,14 @@ check both-classes test "$(tail -n +2 "$dir/a.csv" | cut -d, -f1 | sort -u | tr 
 check 48-features-in-0-1 awk -F, 'NR > 1 && (NF != 49 || $1 !~ /^[01]$/) { exit 1 }
   NR > 1 { for (k = 2; k <= NF; ++k) if ($k + 0 < 0 || $k + 0 > 1) exit 1 }' "$dir/a.csv"
 check frame-per-row test "$(($(wc -l <"$dir/a.csv.frames") - 1))" = "$rows"
-check frames-1-and-2 test "$(tail -n +2 "$dir/a.csv.frames" | sort -u | tr '\n' ' ')" = "1 2 "
+check frames-1-and-2 test "$(tail -n +2 "$dir/a.csv.frames" | cut -d, -f1 | sort -u | tr '\n' ' ')" = "1 2 "
+check frames-header test "$(head -1 "$dir/a.csv.frames")" = "frame,body,object"
+# The server's objects group rows: fewer objects than rows in a frame, more than one.
+check objects-group-rows awk -F, 'NR > 1 && $1 == 1 { rows++; seen[$3] = 1 }
+  END { n = length(seen); exit !(n > 1 && n < rows) }' "$dir/a.csv.frames"
+# Every moveable row shows a body (the object it is part of).
+check moveable-rows-have-a-body test "$(paste -d, <(tail -n +2 "$dir/a.csv" | cut -d, -f1) \
+  <(tail -n +2 "$dir/a.csv.frames") | awk -F, '$1 == 1 && $3 < 0' | wc -l)" = 0
 check bad-flag-exit-2 test "$("$sim" dataset --scene MoveableBalls --out "$dir/c.csv" \
   --frames 0 >/dev/null 2>&1; echo $?)" = 2
 exit $((failures > 0))
