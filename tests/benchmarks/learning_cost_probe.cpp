@@ -4,8 +4,10 @@
 // restore the model at n as a server does (its latest snapshot, then the samples
 // after it relearned) under the two snapshot policies of SessionPolicy. Streams:
 // uniform random 48-d vectors with fair random labels (data that does not
-// cluster) and the learning benchmark's built-in streams (structured 48-d data):
+// cluster), the learning benchmark's built-in streams (structured 48-d data)
+// and labelled CSV files (e.g. a relmap-sim dataset, learned in row order):
 //   build/tests/benchmarks/learning_cost_probe --streams random48,xor48-unit-range
+//   build/tests/benchmarks/learning_cost_probe --streams /tmp/wb.csv --restore off
 // CPU time of this thread, not wall time: the figure does not depend on what
 // else runs on the machine.
 #include <fmt/format.h>
@@ -14,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <string_view>
@@ -21,6 +24,7 @@
 
 #include "cmm/collaborative_mixture_models.h"
 #include "common/command_line.h"
+#include "common/labelled_csv.h"
 #include "common/random.h"
 #include "learning_bench/streams.h"
 
@@ -31,8 +35,11 @@ constexpr int kDimension = 48;
 constexpr std::string_view kUsage =
     "usage: learning_cost_probe [--streams random48,xor48,...] [--checkpoints 250,1000,2000,5000]\n"
     "                           [--window 250] [--variant corrected] [--seed 1]\n"
-    "  random48: uniform [0,1)^48 with fair random labels; other names: the\n"
-    "  learning benchmark's built-in streams (relmap-bench-learning --help).\n";
+    "                           [--restore on|off]\n"
+    "  random48: uniform [0,1)^48 with fair random labels; a name ending in .csv:\n"
+    "  that file (label,f1,...,fp rows, learned in row order); other names: the\n"
+    "  learning benchmark's built-in streams (relmap-bench-learning --help).\n"
+    "  --restore off: skip the restore timings (the update figures only).\n";
 
 struct Options {
   std::vector<std::string> streams{"random48", "xor48-unit-range", "rings48"};
@@ -40,6 +47,7 @@ struct Options {
   int window = 250;
   Variant variant = Variant::kCorrected;
   std::uint64_t seed = 1;
+  bool restore = true;
 };
 
 [[noreturn]] void Fail(const std::string& message) {
@@ -86,6 +94,11 @@ Options ParseArguments(int argc, char** argv) {
       options.variant = *variant;
     } else if (flag == "--seed") {
       options.seed = static_cast<std::uint64_t>(number());
+    } else if (flag == "--restore") {
+      if (std::string_view(value) != "on" && std::string_view(value) != "off") {
+        Fail(fmt::format("--restore takes on or off\n{}", kUsage));
+      }
+      options.restore = std::string_view(value) == "on";
     } else {
       Fail(fmt::format("unknown argument '{}'\n{}", flag, kUsage));
     }
@@ -117,6 +130,15 @@ datasets::LabelledSamples RandomVectors(int count, std::uint64_t seed) {
 
 datasets::LabelledSamples MakeSamples(const std::string& name, int count, std::uint64_t seed) {
   if (name == "random48") return RandomVectors(count, seed);
+  if (name.ends_with(".csv")) {
+    auto file = datasets::ReadLabelledCsv(name);
+    if (!file.ok()) Fail(file.status().message());
+    if (file->features.rows() < count) {
+      Fail(fmt::format("{} has {} samples, the last checkpoint needs {}", name,
+                       file->features.rows(), count));
+    }
+    return *std::move(file);
+  }
   const learning_bench::StreamSpec* spec = learning_bench::FindBuiltInStream(name);
   if (spec == nullptr) Fail(fmt::format("unknown stream '{}'\n{}", name, kUsage));
   return learning_bench::MakeStream(*spec, {.train = count, .test = 1}, seed, 0).train;
@@ -191,17 +213,23 @@ void Probe(const std::string& name, const Options& options) {
     const int candidates_max = *std::max_element(candidates_first, candidates.end());
 
     fmt::print(
-        "{:<18} n={:<5} K={:>2}+{:<3} L={:<12.6g} update ms: mean {:6.2f} p50 {:6.2f} p99 {:7.2f} "
-        "max {:7.2f} | candidates: mean {:5.2f} max {:2} | restore ms: snapshot of n {:6.1f}, "
-        "every 500 (worst, +{} samples) {:8.1f}, after 0.5 s (+{}) {:7.1f}\n",
-        name, i + 1, model->component_count(0), model->component_count(1), model->LogLikelihood(),
-        window_total / options.window, window[window.size() / 2],
+        "{:<18} n={:<5} K={:>2}+{:<3} L={:<12.6g} update ms: mean {:6.3f} p50 {:6.3f} p99 {:7.3f} "
+        "max {:7.3f} | candidates: mean {:5.2f} max {:2}",
+        std::filesystem::path(name).filename().string(), i + 1, model->component_count(0),
+        model->component_count(1), model->LogLikelihood(), window_total / options.window,
+        window[window.size() / 2],
         window[static_cast<std::size_t>(0.99 * static_cast<double>(window.size() - 1))],
-        window.back(), candidates_total / options.window, candidates_max,
-        RestoreMilliseconds({model->Snapshot(), i + 1}, samples, i + 1),
-        i + 1 - every_worst[checkpoint].count,
-        RestoreMilliseconds(every_worst[checkpoint], samples, i + 1), i + 1 - after_learning.count,
-        RestoreMilliseconds(after_learning, samples, i + 1));
+        window.back(), candidates_total / options.window, candidates_max);
+    if (options.restore) {
+      fmt::print(
+          " | restore ms: snapshot of n {:6.1f}, every 500 (worst, +{} samples) {:8.1f}, after "
+          "0.5 s (+{}) {:7.1f}",
+          RestoreMilliseconds({model->Snapshot(), i + 1}, samples, i + 1),
+          i + 1 - every_worst[checkpoint].count,
+          RestoreMilliseconds(every_worst[checkpoint], samples, i + 1),
+          i + 1 - after_learning.count, RestoreMilliseconds(after_learning, samples, i + 1));
+    }
+    fmt::print("\n");
     std::fflush(stdout);
   }
 }
