@@ -15,7 +15,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libsqlite3-dev libssl-dev zlib1g-dev openssl
   libzstd-dev           # the compact frame cache (server/perception/word_planes.cpp)
-  python3-grpcio python3-protobuf  # scripts/grpcurl-lite
+  python3-grpcio python3-protobuf  # scripts/grpcurl-lite, the Python client
+  python3-numpy python3-pytest     # the Python client (client/python) and its tests
+  python3-venv python3-setuptools python3-wheel  # its offline `pip install` (README)
   libpq-dev postgresql  # the shared session store and its tests
   nginx python3-yaml    # the cluster test's load balancer; deploy/ YAML checks
   file                  # cpack -G DEB (dpkg-shlibdeps)
