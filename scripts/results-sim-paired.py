@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Each ablation of scripts/results-sim.sh against the default classifier with the choice
-map, replication by replication (the same seed per replication for both): the mean
+map (and physical labelling of the moved object against physical labelling), replication by
+replication (the same seed per replication for both): the mean
 difference of the final balanced accuracy (thresholded, as docs/results.md's "accuracy"),
 its range, and in how many replications the default did better and worse by more than
 0.005 (closer is a tie: the last iteration's accuracy moves by more from one push).
@@ -11,7 +12,9 @@ import json
 import os
 import sys
 
-ABLATIONS = ("alpha1", "paper2018", "random")
+# (baseline, other): the experiments' suffixes after the setup's name.
+COMPARISONS = (("", "-alpha1"), ("", "-paper2018"), ("", "-random"), ("", "-object"),
+               ("-physical", "-physical-object"))
 TIE = 0.005
 
 
@@ -33,16 +36,16 @@ def main():
           "| default better / worse |")
     print("|---|---|---|---|---|")
     for setup in setups:
-        default = final_accuracies(root, setup)
-        for ablation in ABLATIONS:
-            other = final_accuracies(root, f"{setup}-{ablation}")
+        for baseline, ablation in COMPARISONS:
+            default = final_accuracies(root, setup + baseline)
+            other = final_accuracies(root, setup + ablation)
             if default is None or other is None:
                 continue
             pairs = [(a, d) for a, d in zip(other, default) if a is not None and d is not None]
             differences = [a - d for a, d in pairs]
             better = sum(d - a > TIE for a, d in pairs)
             worse = sum(a - d > TIE for a, d in pairs)
-            print(f"| {setup} | {ablation} | {sum(differences) / len(differences):+.3f} "
+            print(f"| {setup}{baseline} | {ablation[1:]} | {sum(differences) / len(differences):+.3f} "
                   f"| {min(differences):+.2f} to {max(differences):+.2f} "
                   f"| {better} / {worse} of {len(pairs)} |")
 

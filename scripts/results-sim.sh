@@ -76,4 +76,12 @@ done
 for scene in "${paper[@]}" "${benchmarks[@]}"; do
   run "$scene-physical" --scene "$(file_of "$scene")" --mode physical --iterations 100
 done
+# A push labels what moved with the target (docs/method.md §4.5): oracle mode posts the
+# target's true body, physical mode learns what the change detector saw move.
+for scene in "${benchmarks[@]}" "${paper[@]}"; do
+  run "$scene-object" --scene "$(file_of "$scene")" --mode oracle --labels object \
+    --iterations 200
+  run "$scene-physical-object" --scene "$(file_of "$scene")" --mode physical --labels object \
+    --iterations 100
+done
 /usr/bin/env python3 scripts/results-sim-table.py "$keep"
