@@ -14,7 +14,10 @@ import sys
 
 # (baseline, other): the experiments' suffixes after the setup's name.
 COMPARISONS = (("", "-alpha1"), ("", "-paper2018"), ("", "-random"), ("", "-object"),
-               ("-physical", "-physical-object"))
+               ("-physical", "-physical-object"), ("", "-balanced"), ("", "-balanced-object"),
+               ("-object", "-balanced-object"), ("-random", "-balanced"),
+               ("-paper2018", "-balanced"), ("-random", "-balanced-object"),
+               ("-paper2018", "-balanced-object"))
 TIE = 0.005
 
 
@@ -32,8 +35,8 @@ def main():
     root = sys.argv[1] if len(sys.argv) > 1 else "docs/results/kinect"
     with open(os.path.join(root, "experiments.txt")) as f:
         setups = [n for n in (line.strip() for line in f) if n and "-" not in n]
-    print("| setup | ablation | mean difference (ablation − default) | range "
-          "| default better / worse |")
+    print("| baseline | other | mean difference (other − baseline) | range "
+          "| baseline better / worse |")
     print("|---|---|---|---|---|")
     for setup in setups:
         for baseline, ablation in COMPARISONS:

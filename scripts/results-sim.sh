@@ -84,4 +84,11 @@ for scene in "${benchmarks[@]}" "${paper[@]}"; do
   run "$scene-physical-object" --scene "$(file_of "$scene")" --mode physical --labels object \
     --iterations 100
 done
+# The class-balanced choice rule (docs/method.md §4.4), alone and with object labels.
+for scene in "${benchmarks[@]}" "${paper[@]}"; do
+  run "$scene-balanced" --scene "$(file_of "$scene")" --mode oracle --class-balanced on \
+    --iterations 200
+  run "$scene-balanced-object" --scene "$(file_of "$scene")" --mode oracle --class-balanced on \
+    --labels object --iterations 200
+done
 /usr/bin/env python3 scripts/results-sim-table.py "$keep"
