@@ -43,12 +43,17 @@ Eigen::VectorXd ChoiceMap(const Eigen::VectorXd& uncertainty, const Eigen::Vecto
 
 namespace {
 
-// ½ a/Σa + ½ b/Σb, a half left out when its sum is 0 (the other then takes all).
-Eigen::VectorXd HalfEach(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  const double sa = a.sum(), sb = b.sum();
-  if (!(sa > 0.0)) return b;
-  if (!(sb > 0.0)) return a;
-  return 0.5 * (a / sa + b / sb);
+// ½ g/Σ_P g on P = {i : r_i ≥ ½}, the supervoxels predicted moveable, and ½ g/Σ_N g on
+// the rest; a class with no weight is left out and the other takes all. Split by the
+// prediction, not in proportion to r: in a scene of one moveable supervoxel to ten of
+// background, draws in proportion to a soft r still land mostly on background.
+Eigen::VectorXd HalfPerPredictedClass(const Eigen::VectorXd& relevance, const Eigen::VectorXd& g) {
+  const Eigen::VectorXd moveable = (relevance.array() >= 0.5).select(g, 0.0);
+  const Eigen::VectorXd background = g - moveable;
+  const double sm = moveable.sum(), sb = background.sum();
+  if (!(sm > 0.0)) return background;
+  if (!(sb > 0.0)) return moveable;
+  return 0.5 * (moveable / sm + background / sb);
 }
 
 }  // namespace
@@ -59,8 +64,7 @@ Eigen::VectorXd ChoiceMap(const ChoiceTerms& terms, const ExplorationConfig& con
          g.size() == terms.confidence.size() && terms.relevance.size() == g.size());
   const bool paper_quirks = config.paper_choice_quirks;
   Eigen::VectorXd w = config.rule == ChoiceRule::kClassBalanced
-                          ? HalfEach(terms.relevance.cwiseProduct(g),
-                                     (1.0 - terms.relevance.array()).matrix().cwiseProduct(g))
+                          ? HalfPerPredictedClass(terms.relevance, g)
                           : Eigen::VectorXd(terms.uncertainty.array() *
                                             (1.0 - terms.confidence.array()) * g.array());
   if (paper_quirks) w = (w.array() < kPaperChoiceFloor).select(0.0, w);

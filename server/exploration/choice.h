@@ -30,7 +30,7 @@ struct ChoiceTerms {
 };
 
 // The choice map of a session's exploration options (§4.4): the rule's weights
-// (u_i (1 − c_i), or the class-balanced mixture of r and 1 − r) times g_i,
+// (u_i (1 − c_i), or half per predicted class) times g_i,
 // normalised, then mixed with the uniform map by `config.random_share`.
 Eigen::VectorXd ChoiceMap(const ChoiceTerms& terms, const ExplorationConfig& config);
 

@@ -25,9 +25,9 @@ enum class ConfidenceMode {
 // What the choice map weighs before the diversity term and the random share (§4.4).
 enum class ChoiceRule {
   kUncertainty,  // w = u (1 − c): the paper's rule
-  // w = ½ r/Σr + ½ (1 − r)/Σ(1 − r), r the relevance: half the draws among what the
-  // model thinks moveable, half among the rest, each in proportion to how much it
-  // thinks so; a class-balanced sample of the scene rather than of its boundary.
+  // w = ½ 1[r ≥ ½]/|P| + ½ 1[r < ½]/|N|, r the relevance, P and N the supervoxels
+  // predicted moveable and not: half the draws among each predicted class, uniformly
+  // within it; a class-balanced sample of the scene rather than of its boundary.
   kClassBalanced,
 };
 

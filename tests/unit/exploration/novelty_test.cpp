@@ -92,14 +92,25 @@ TEST(ChoiceMap, TheClassBalancedRuleDrawsHalfAmongEachPredictedClass) {
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(4);
   Eigen::VectorXd r(4);
   r << 0.9, 0.1, 0.5, 0.5;
-  EXPECT_TRUE(ChoiceMap({r, u, c, ones}, config).isApprox(Eigen::VectorXd::Constant(4, 0.25)));
-  const Eigen::VectorXd& sure = u;  // (1, 0, 0, 0)
-  const Eigen::VectorXd choice = ChoiceMap({sure, u, c, ones}, config);
-  EXPECT_NEAR(choice[0], 0.5, 1e-12);
-  EXPECT_NEAR(choice[1], 1.0 / 6.0, 1e-12);
-  EXPECT_NEAR(choice[3], 1.0 / 6.0, 1e-12);
-  // Everything surely moveable: the other half is empty and the first takes all.
+  // P = {0, 2, 3} (r ≥ ½), N = {1}: ½ spread over P, ½ on the one in N; u and c play no part.
+  Eigen::VectorXd expected(4);
+  expected << 1.0 / 6.0, 0.5, 1.0 / 6.0, 1.0 / 6.0;
+  EXPECT_TRUE(ChoiceMap({r, u, c, ones}, config).isApprox(expected));
+  // With novelty g = (½, 1, 0, 1): P's half in proportion to g, (½, 0, 1) / 1.5.
+  Eigen::VectorXd g(4);
+  g << 0.5, 1, 0, 1;
+  expected << 1.0 / 6.0, 0.5, 0.0, 1.0 / 3.0;
+  EXPECT_TRUE(ChoiceMap({r, u, c, g}, config).isApprox(expected));
+  // A sure prediction does not weigh more: one supervoxel predicted moveable gets ½.
+  const Eigen::VectorXd& one_moveable = u;  // (1, 0, 0, 0)
+  expected << 0.5, 1.0 / 6.0, 1.0 / 6.0, 1.0 / 6.0;
+  EXPECT_TRUE(ChoiceMap({one_moveable, u, c, ones}, config).isApprox(expected));
+  // Everything predicted moveable (an untrained model's ½ too): the other half is empty
+  // and the first takes all.
   EXPECT_TRUE(ChoiceMap({ones, u, c, ones}, config).isApprox(Eigen::VectorXd::Constant(4, 0.25)));
+  const Eigen::VectorXd untrained = Eigen::VectorXd::Constant(4, 0.5);
+  EXPECT_TRUE(
+      ChoiceMap({untrained, u, c, ones}, config).isApprox(Eigen::VectorXd::Constant(4, 0.25)));
 }
 
 TEST(ChoiceMap, ThePapersOptionsGiveThePapersMap) {
