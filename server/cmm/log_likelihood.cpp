@@ -38,8 +38,21 @@ Eigen::VectorXd CollaborativeMixtureModels::CriterionClassLogDensity(
     const double w = stored_weights ? c->weight() : c->size() / total;
     columns.push_back({c->LogDensityColumn(data_), std::log(w)});
   }
-  Eigen::VectorXd log_gamma = MixtureLogDensity(columns, data_.size());
-  if (config_.acceptance != AcceptanceTest::kLeaveOneOut) return log_gamma;
+  if (config_.acceptance != AcceptanceTest::kLeaveOneOut) {
+    return MixtureLogDensity(columns, data_.size());
+  }
+
+  // The members hold every sample of their class, and those rows are set
+  // below: only the other rows take the plain mixture density.
+  const int n = data_.size();
+  std::vector<bool> in_class(static_cast<std::size_t>(n), false);
+  for (const Component* c : members) {
+    for (const int i : c->indices()) in_class[static_cast<std::size_t>(i)] = true;
+  }
+  Eigen::VectorXd log_gamma(n);
+  for (int i = 0; i < n; ++i) {
+    if (!in_class[static_cast<std::size_t>(i)]) log_gamma[i] = MixtureLogDensityAt(columns, i);
+  }
 
   // Sample i of component k, taken out: weights (m_j − [j = k])/(M − 1), and
   // component k's density without it.

@@ -39,6 +39,18 @@ Eigen::VectorXd MixtureLogDensity(const std::vector<WeightedColumn>& columns, in
   return high;
 }
 
+double MixtureLogDensityAt(const std::vector<WeightedColumn>& columns, int i) {
+  double high = kNegativeInfinity;
+  for (const auto& column : columns)
+    high = std::max(high, column.log_weight + column.log_density[i]);
+  double sum = 0.0;
+  for (const auto& column : columns) {
+    const double relative = column.log_weight + column.log_density[i] - high;
+    if (relative > -kNegligibleLogTerm) sum += Exp(relative);
+  }
+  return high == kNegativeInfinity ? high : high + Log(sum);
+}
+
 double LogSumExp(std::span<const double> terms) {
   double high = kNegativeInfinity;
   for (const double t : terms) high = std::max(high, t);
