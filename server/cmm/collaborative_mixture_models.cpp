@@ -38,8 +38,7 @@ StatusOr<UpdateReport> CollaborativeMixtureModels::Add(const Eigen::Ref<const Ei
 
   // Step 1: append to S (and let the prior follow the data).
   data_.Append(x, label);
-  InvalidateLikelihood(0);
-  InvalidateLikelihood(1);
+  ExtendClassLogDensities();
   if (config_.covariance == CovarianceEstimate::kPooledPrior && IsPriorCheckpoint(data_.size())) {
     RefreshPrior();
   }

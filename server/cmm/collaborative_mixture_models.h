@@ -152,6 +152,10 @@ class CollaborativeMixtureModels {
                                                 const Calibration& calibration);
   // Fills the criterion's class densities of the current model.
   void FillClassLogDensities();
+  // After a sample was appended to the dataset and before any component took
+  // it: the class densities gain the new row (the old rows are those of the
+  // same components and weights), and L is forgotten.
+  void ExtendClassLogDensities();
   // Refits the calibration to the current model (kCalibrated): at the start of
   // every Add, once the sample is in, so that the current model and its
   // candidates are compared each with its best calibration, and at the end, for

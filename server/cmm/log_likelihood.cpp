@@ -124,6 +124,30 @@ void CollaborativeMixtureModels::FillClassLogDensities() {
   }
 }
 
+void CollaborativeMixtureModels::ExtendClassLogDensities() {
+  const int n = data_.size();
+  for (int label = 0; label < 2; ++label) {
+    Eigen::VectorXd& log_gamma = class_log_density_[label];
+    // With stale weights a component takes samples without its class's
+    // densities being forgotten, so they may not be those of the model.
+    if (log_gamma.size() != n - 1 || config_.switches.stale_weights) {
+      log_gamma.resize(0);
+      continue;
+    }
+    // The new sample is in no component yet: its row is the plain mixture
+    // density, under either criterion, and the other rows do not change.
+    std::vector<WeightedColumn> columns;
+    columns.reserve(components_[label].size());
+    for (Component& c : components_[label]) {
+      columns.push_back({c.LogDensityColumn(data_), std::log(c.weight())});
+    }
+    log_gamma.conservativeResize(n);
+    log_gamma[n - 1] = MixtureLogDensityAt(columns, n - 1);
+  }
+  sample_log_probability_.resize(0);
+  log_likelihood_.reset();
+}
+
 void CollaborativeMixtureModels::Recalibrate() {
   if (config_.prediction != Prediction::kCalibrated) return;
   FillClassLogDensities();
