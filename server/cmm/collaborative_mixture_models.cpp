@@ -141,6 +141,8 @@ void CollaborativeMixtureModels::RandomRecheck(int step_two_index, UpdateReport&
 
 void CollaborativeMixtureModels::InvalidateLikelihood(int label) {
   class_log_density_[label].resize(0);
+  class_log_high_[label].resize(0);
+  sample_log_odds_.resize(0);
   sample_log_probability_.resize(0);
   log_likelihood_.reset();
 }

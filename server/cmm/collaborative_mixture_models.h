@@ -138,9 +138,16 @@ class CollaborativeMixtureModels {
   }
   // The criterion's log Γ of one class at every sample, for the class's
   // components `members` (with their stored weights, or m_k/Σm): under
-  // kLeaveOneOut, a sample of the class is evaluated without itself.
+  // kLeaveOneOut, a sample of the class is evaluated without itself, and
+  // `largest`, if given, receives each row's largest term.
   Eigen::VectorXd CriterionClassLogDensity(const std::vector<Component*>& members,
-                                           bool stored_weights);
+                                           bool stored_weights, Eigen::VectorXd* largest = nullptr);
+  // The same for the candidate that replaces class `label`'s components
+  // `removed` by `added`, recomputing only the rows the change can reach (the
+  // others keep the current model's bits); `changed` receives those rows.
+  Eigen::VectorXd CandidateClassLogDensity(int label, const std::vector<int>& removed,
+                                           std::vector<Component>& added,
+                                           std::vector<int>& changed);
   // Per sample, the log-odds in favour of its label from both classes'
   // criterion densities (before calibration).
   Eigen::VectorXd SampleLogOdds(const std::array<Eigen::VectorXd, 2>& log_gamma);
@@ -152,6 +159,9 @@ class CollaborativeMixtureModels {
                                                 const Calibration& calibration);
   // Fills the criterion's class densities of the current model.
   void FillClassLogDensities();
+  // The current model's log-odds of every sample (SampleLogOdds), kept while
+  // the class densities are.
+  const Eigen::VectorXd& CurrentLogOdds();
   // After a sample was appended to the dataset and before any component took
   // it: the class densities gain the new row (the old rows are those of the
   // same components and weights), and L is forgotten.
@@ -172,10 +182,14 @@ class CollaborativeMixtureModels {
   CovariancePrior prior_;
   Calibration calibration_;
   Eigen::VectorXd sample_log_pseudo_count_;  // empty = to be computed
-  // log Γ_l(x_i) of each class, log P(l_i | x_i) of each sample and their sum
-  // L, kept between candidate evaluations while the model does not change
-  // (empty = to be computed).
+  // log Γ_l(x_i) of each class, the log-odds and log P(l_i | x_i) of each
+  // sample and their sum L, kept between candidate evaluations while the model
+  // does not change (empty = to be computed).
   std::array<Eigen::VectorXd, 2> class_log_density_;
+  // Under kLeaveOneOut, the largest term of each row of class_log_density_,
+  // against which a candidate's changed terms are found negligible or not.
+  std::array<Eigen::VectorXd, 2> class_log_high_;
+  Eigen::VectorXd sample_log_odds_;
   Eigen::VectorXd sample_log_probability_;
   std::optional<double> log_likelihood_;
   std::uint64_t splits_ = 0;

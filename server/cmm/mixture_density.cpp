@@ -39,10 +39,11 @@ Eigen::VectorXd MixtureLogDensity(const std::vector<WeightedColumn>& columns, in
   return high;
 }
 
-double MixtureLogDensityAt(const std::vector<WeightedColumn>& columns, int i) {
+double MixtureLogDensityAt(const std::vector<WeightedColumn>& columns, int i, double* largest) {
   double high = kNegativeInfinity;
   for (const auto& column : columns)
     high = std::max(high, column.log_weight + column.log_density[i]);
+  if (largest != nullptr) *largest = high;
   double sum = 0.0;
   for (const auto& column : columns) {
     const double relative = column.log_weight + column.log_density[i] - high;
@@ -51,9 +52,10 @@ double MixtureLogDensityAt(const std::vector<WeightedColumn>& columns, int i) {
   return high == kNegativeInfinity ? high : high + Log(sum);
 }
 
-double LogSumExp(std::span<const double> terms) {
+double LogSumExp(std::span<const double> terms, double* largest) {
   double high = kNegativeInfinity;
   for (const double t : terms) high = std::max(high, t);
+  if (largest != nullptr) *largest = high;
   if (high == kNegativeInfinity) return high;
   double sum = 0.0;
   for (const double t : terms) {

@@ -21,10 +21,13 @@ inline constexpr double kNegligibleLogTerm = 50.0;
 // Log-sum-exp over the components for each of the `n` points; −∞ where every
 // term is −∞ (no component, or only distant "hit" components).
 Eigen::VectorXd MixtureLogDensity(const std::vector<WeightedColumn>& columns, int n);
-// The same value for point i alone, by the same operations (the same bits).
-double MixtureLogDensityAt(const std::vector<WeightedColumn>& columns, int i);
+// The same value for point i alone, by the same operations (the same bits);
+// `largest`, if given, receives its largest term.
+double MixtureLogDensityAt(const std::vector<WeightedColumn>& columns, int i,
+                           double* largest = nullptr);
 
 // log Σ_t e^{terms[t]} of one point, the same two passes; −∞ when every term is.
-double LogSumExp(std::span<const double> terms);
+// `largest`, if given, receives the largest term.
+double LogSumExp(std::span<const double> terms, double* largest = nullptr);
 
 }  // namespace relmap::cmm
