@@ -96,6 +96,9 @@ class CollaborativeMixtureModels {
   // graph is connected.
   std::vector<Component> SplitHalves(Component& c);
   bool TryMerge(int label, int index, UpdateReport& report);
+  // MERGE's candidate model for components_[label][index] and [k]: their union,
+  // built once per pair of states (Component::cached_unions).
+  std::vector<Component>& UnionCandidate(int label, int index, int k);
   // §3.4 step 3 and step 4.
   void SplitOrMerge(int label, int index, UpdateReport& report);
   void RandomRecheck(int step_two_index, UpdateReport& report);

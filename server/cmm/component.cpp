@@ -4,6 +4,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -135,6 +136,10 @@ void Component::Refresh(const Dataset& data, const CmmConfig& config,
   const auto& switches = config.switches;
   log_density_column_.clear();
   split_.reset();
+  unions_.clear();
+  // Unique across models and threads: a cached union is looked up by it.
+  static std::atomic<std::uint64_t> next_version{1};
+  version_ = next_version.fetch_add(1, std::memory_order_relaxed);
   pseudo_samples_ = 0.0;
   centre_ = (switches.first_sample_mean && m <= kHitMaxSize)
                 ? Eigen::VectorXd(data.sample(indices_[0]))

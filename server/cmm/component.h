@@ -97,6 +97,21 @@ class Component {
   // components, whose halves then cost only the rows of their columns added since.
   std::optional<std::vector<Component>>& cached_split() { return split_; }
 
+  // Identifies the component's state: a new value whenever its samples,
+  // statistics or prior change, kept by copies. A union of two components
+  // depends on their two states alone.
+  std::uint64_t version() const { return version_; }
+
+  // MERGE's proposals for this component (merge.cpp): its union with another
+  // component of its class, as the one-element candidate model it was
+  // evaluated as (with its column), keyed by the other's version(); kept until
+  // this component changes, like the split.
+  struct CachedUnion {
+    std::uint64_t partner_version = 0;
+    std::vector<Component> merged;
+  };
+  std::vector<CachedUnion>& cached_unions() { return unions_; }
+
   // The log-densities of the dataset's samples under this component, one per
   // sample: the component's column of the n×K cache (§3.8). Filled lazily:
   // only rows added since the last call are computed; any change to the
@@ -133,6 +148,8 @@ class Component {
   std::vector<double> log_density_column_;
   NearestNeighbourGraph nearest_;  // empty = not built yet
   std::optional<std::vector<Component>> split_;
+  std::vector<CachedUnion> unions_;
+  std::uint64_t version_ = 0;
 };
 
 }  // namespace relmap::cmm
