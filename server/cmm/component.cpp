@@ -93,7 +93,12 @@ void Component::AddSample(int index, const Dataset& data, const CmmConfig& confi
   scatter_.noalias() += (m / (m + 1.0)) * delta * delta.transpose();
   if (!nearest_.nearest.empty()) AddToNearestNeighbours(index, data);
   indices_.push_back(index);
+  // Under the same prior a half depends on its samples alone, so halves
+  // proposed before any number of appended samples stay valid.
+  std::vector<Component> earlier =
+      split_ && !split_->empty() ? std::move(*split_) : std::move(earlier_halves_);
   Refresh(data, config, prior);
+  earlier_halves_ = std::move(earlier);
 }
 
 void Component::Refit(const Dataset& data, const CmmConfig& config, const CovariancePrior* prior) {
@@ -136,6 +141,7 @@ void Component::Refresh(const Dataset& data, const CmmConfig& config,
   const auto& switches = config.switches;
   log_density_column_.clear();
   split_.reset();
+  earlier_halves_.clear();
   unions_.clear();
   // Unique across models and threads: a cached union is looked up by it.
   static std::atomic<std::uint64_t> next_version{1};

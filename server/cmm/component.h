@@ -96,6 +96,10 @@ class Component {
   // component changes: the random re-check of §3.4 mostly revisits unchanged
   // components, whose halves then cost only the rows of their columns added since.
   std::optional<std::vector<Component>>& cached_split() { return split_; }
+  // The halves last proposed before the component took samples (AddSample),
+  // handed over once: a half whose samples are still a half of the grown
+  // component is that half, bit for bit, column included (split.cpp).
+  std::vector<Component> TakeEarlierHalves() { return std::move(earlier_halves_); }
 
   // Identifies the component's state: a new value whenever its samples,
   // statistics or prior change, kept by copies. A union of two components
@@ -148,6 +152,7 @@ class Component {
   std::vector<double> log_density_column_;
   NearestNeighbourGraph nearest_;  // empty = not built yet
   std::optional<std::vector<Component>> split_;
+  std::vector<Component> earlier_halves_;
   std::vector<CachedUnion> unions_;
   std::uint64_t version_ = 0;
 };

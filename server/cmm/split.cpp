@@ -1,5 +1,6 @@
 // SPLIT (§3.6): a component that overlaps the other class is cut in two along the
 // gaps of its 1-nearest-neighbour graph, if that raises the likelihood.
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <vector>
@@ -47,9 +48,20 @@ std::vector<Component> CollaborativeMixtureModels::SplitHalves(Component& c) {
     halves_graph[group[j]].nearest.push_back(position_in_half[graph.nearest[j]]);
     halves_graph[group[j]].squared_distance.push_back(graph.squared_distance[j]);
   }
+  // A half of the component before it grew that is again a half, the same
+  // samples in the same order, is kept with its column: it is what
+  // FromSamples would rebuild.
+  std::vector<Component> earlier = c.TakeEarlierHalves();
   std::vector<Component> halves;
+  halves.reserve(2);
   for (int h = 0; h < 2; ++h) {
-    halves.push_back(Component::FromSamples(label, samples[h], data_, config_, prior_or_null()));
+    const auto same = std::find_if(earlier.begin(), earlier.end(),
+                                   [&](const Component& e) { return e.indices() == samples[h]; });
+    if (same != earlier.end()) {
+      halves.push_back(std::move(*same));
+    } else {
+      halves.push_back(Component::FromSamples(label, samples[h], data_, config_, prior_or_null()));
+    }
     halves.back().AdoptNearestNeighbours(std::move(halves_graph[h]));
   }
   return halves;
