@@ -57,6 +57,10 @@ double LogCalibratedProbability(double log_odds, const Calibration& c) {
   return LogAddExp(std::log1p(-c.label_noise) + model, std::log(0.5 * c.label_noise));
 }
 
+double TemperatureSlope(double log_odds, double temperature) {
+  return log_odds * Sigmoid(-temperature * log_odds);
+}
+
 double FitTemperature(std::span<const double> z, std::span<const double> w, double start) {
   double low = 0.0;
   double high = 1.0;

@@ -34,4 +34,7 @@ Calibration FitCalibration(std::span<const double> log_odds, const Calibration& 
 double FitTemperature(std::span<const double> log_odds, std::span<const double> weights = {},
                       double start = 0.5);
 
+// z σ(−τz), one sample's term of the derivative in τ of Σ_i log σ(τ z_i).
+double TemperatureSlope(double log_odds, double temperature);
+
 }  // namespace relmap::cmm

@@ -113,6 +113,10 @@ class CollaborativeMixtureModels {
   // centres, nearest first (ties: lower index), excluding `skip` (or -1).
   std::vector<int> CandidatesByDistance(const Component& c, int label, int skip) const;
 
+  // Whether the candidate of log-odds `log_odds`, the current model's outside
+  // the rows `changed`, is sure not to raise L whatever calibration it fits
+  // (kCalibrated without label noise; false when it cannot tell).
+  bool CannotImprove(const Eigen::VectorXd& log_odds, const std::vector<int>& changed);
   // Whether replacing class `label`'s components `removed` by `added` raises L
   // strictly (always true with the switch skip_likelihood_check).
   bool ImprovesLikelihood(int label, const std::vector<int>& removed, std::vector<Component>& added,
@@ -195,6 +199,13 @@ class CollaborativeMixtureModels {
   Eigen::VectorXd sample_log_odds_;
   Eigen::VectorXd sample_log_probability_;
   std::optional<double> log_likelihood_;
+  // Σ_i z_i σ(−τ z_i) of the current log-odds at the current τ, and Σ of its
+  // terms' magnitudes, for CannotImprove; kept with log_likelihood_.
+  struct Slope {
+    double gradient = 0.0;
+    double magnitude = 0.0;
+  };
+  std::optional<Slope> current_slope_;
   std::uint64_t splits_ = 0;
   std::uint64_t merges_ = 0;
 };
