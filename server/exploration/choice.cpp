@@ -48,8 +48,8 @@ namespace {
 // prediction, not in proportion to r: in a scene of one moveable supervoxel to ten of
 // background, draws in proportion to a soft r still land mostly on background.
 Eigen::VectorXd HalfPerPredictedClass(const Eigen::VectorXd& relevance, const Eigen::VectorXd& g) {
-  const Eigen::VectorXd moveable = (relevance.array() >= 0.5).select(g, 0.0);
-  const Eigen::VectorXd background = g - moveable;
+  Eigen::VectorXd moveable = (relevance.array() >= 0.5).select(g, 0.0);
+  Eigen::VectorXd background = g - moveable;
   const double sm = moveable.sum(), sb = background.sum();
   if (!(sm > 0.0)) return background;
   if (!(sb > 0.0)) return moveable;
