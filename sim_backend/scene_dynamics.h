@@ -17,10 +17,10 @@ bool AllAtRest(const std::vector<SimBody>& bodies, const PhysicsSettings& physic
 // physics.settle_time_cap seconds; returns the simulated seconds.
 double SettleScene(OdeWorld& world, const std::vector<SimBody>& bodies);
 
-// Every object at a pose drawn in its spawn region, redrawn (up to 100 times)
+// Every object at a pose drawn in its spawn region, redrawn (up to 2,000 times)
 // while it overlaps a static body or an object already placed, then settles.
-// Returns how many objects found no free pose and were left overlapping (physics
-// then pushes them apart).
+// Returns how many objects found no free pose: those are left out of the scene
+// until the next respawn (disabled, far below it, never seen or touched).
 int RespawnObjects(const Scene& scene, OdeWorld& world, const std::vector<SimBody>& bodies,
                    SeededRandom& random);
 
