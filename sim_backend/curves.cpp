@@ -27,7 +27,7 @@ const char kIterationCsvHeader[] =
     "change_vacated_beyond_motion_points,change_object_vacated_beyond_motion_points,"
     "change_object_motion_fitted,change_object_motion_translation_m,"
     "change_carried_supported_points,change_carried_vacated_points,"
-    "change_carried_occluded_points,moved_learned,moved_mislabelled";
+    "change_carried_occluded_points,moved_learned,moved_mislabelled,objects_left_out";
 
 namespace {
 
@@ -132,6 +132,7 @@ void WriteReplicationJson(const ReplicationResult& r, const ExperimentOptions& o
     json.String(r.error);
   }
   json.Key("skipped_outcomes").Integer(skipped);
+  json.Key("objects_left_out").Integer(ObjectsLeftOut(r));
   json.Key("final");
   if (last == nullptr) {
     json.Null();
@@ -225,6 +226,12 @@ void WriteTimings(const std::vector<ReplicationResult>& replications, JsonWriter
 
 }  // namespace
 
+int ObjectsLeftOut(const ReplicationResult& r) {
+  int total = 0;
+  for (const IterationRecord& i : r.iterations) total += i.objects_left_out;
+  return total;
+}
+
 void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out) {
   out << kIterationCsvHeader << '\n';
   for (const IterationRecord& i : replication.iterations) {
@@ -268,7 +275,7 @@ void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out) 
     } else {
       out << ",,,,,,,,,,,,";
     }
-    out << ',' << i.moved_learned << ',' << i.moved_mislabelled;
+    out << ',' << i.moved_learned << ',' << i.moved_mislabelled << ',' << i.objects_left_out;
     out << '\n';
   }
 }

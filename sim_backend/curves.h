@@ -22,6 +22,10 @@ extern const char kIterationCsvHeader[];
 // The header and one row per iteration. Undefined scores and absent values (no
 // target, no outcome posted, oracle mode's push) are empty fields; labels are 1
 // (moveable) or 0.
+// The objects the replication's respawns left out, summed over its iterations (one
+// object out of ten respawns counts 1).
+int ObjectsLeftOut(const ReplicationResult& r);
+
 void WriteIterationCsv(const ReplicationResult& replication, std::ostream& out);
 
 // How the run was carried out, beyond its options.

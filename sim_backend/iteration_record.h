@@ -55,6 +55,8 @@ struct IterationRecord {
   // change detector saw move (physical mode), the ones whose ground truth is not moveable.
   std::uint64_t moved_learned = 0;
   std::uint64_t moved_mislabelled = 0;
+  // Oracle mode: objects this iteration's respawn left out of the scene.
+  int objects_left_out = 0;
   ModelCounts model;
   // Physical mode with a target: what the simulator says the push did.
   std::optional<PushReport> push;

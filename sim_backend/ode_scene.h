@@ -75,8 +75,7 @@ class OdeScene final : public SimulatedScene {
   void SetObjectPose(std::int32_t body_id, const Eigen::Isometry3d& world_from_object);
   // Whether every moveable body moves slower than the scene's rest thresholds.
   bool AtRest() const;
-  // Objects the last Respawn could not place without overlap (usually 0).
-  int last_respawn_failures() const { return last_respawn_failures_; }
+  int last_respawn_failures() const override { return last_respawn_failures_; }
 
   Eigen::Vector3d CameraToWorld(const Eigen::Vector3d& p) const;
   Eigen::Vector3d WorldToCamera(const Eigen::Vector3d& p) const;

@@ -124,6 +124,7 @@ class Replication {
     Clock::time_point stage = Clock::now();
     if (options_.mode == LabellingMode::kOracle) {
       scene_.Respawn(IterationSeed(seed_, SeedStream::kRespawn, iteration));
+      record.objects_left_out = scene_.last_respawn_failures();
       t.respawn_ms = MillisecondsSince(stage);
       stage = Clock::now();
     }

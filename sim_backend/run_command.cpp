@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "curves.h"
 #include "experiment.h"
 #include "flags.h"
 #include "scene_loading.h"
@@ -36,6 +37,10 @@ void PrintResults(const ExperimentOptions& options, const ExperimentRun& run) {
                  Score(last.thresholded.accuracy).c_str(),
                  Score(last.thresholded.precision).c_str(), Score(last.thresholded.recall).c_str(),
                  Score(last.soft.accuracy).c_str());
+    if (const int left_out = ObjectsLeftOut(r); left_out > 0) {
+      std::fprintf(stderr, "    %d objects found no free pose and sat out their respawn\n",
+                   left_out);
+    }
   }
   std::size_t count = 0;
   const IterationTimings t = MeanTimings(run.replications, &count);

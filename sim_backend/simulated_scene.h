@@ -66,6 +66,9 @@ class SimulatedScene {
   // The paper's simplified setup: every moveable object at a random collision-free
   // pose in its spawn region, drawn from `seed`, then settled.
   virtual void Respawn(std::uint64_t seed) = 0;
+  // Objects the last Respawn found no free pose for and left out of the scene
+  // (usually 0; a crowded spawn region makes it more).
+  virtual int last_respawn_failures() const { return 0; }
   // The paper's push at `target` (camera frame, metres; a supervoxel's centroid):
   // approach from a random collision-free direction drawn from `seed`, 5 cm
   // straight to the target and a few cm further, retreat, and let the scene settle.

@@ -62,21 +62,22 @@ TEST(IterationCsv, OneRowPerIterationWithEmptyFieldsForWhatIsUndefinedOrAbsent) 
   e.set_carried_occluded_points(2);
   with_change.iterations[0].displacement = SupervoxelDisplacement{114, 60};
   with_change.iterations[0].moved_learned = 5, with_change.iterations[0].moved_mislabelled = 1;
+  with_change.iterations[0].objects_left_out = 2;
   std::ostringstream changed;
   WriteIterationCsv(with_change, changed);
   EXPECT_EQ(Lines(changed.str())[1].substr(Lines(changed.str())[1].rfind("100.000")),
-            "100.000,120,20,90,4,12.500,114,60,1,3,400,250,130,4,70,110,1,0.034,10,80,2,5,1");
+            "100.000,120,20,90,4,12.500,114,60,1,3,400,250,130,4,70,110,1,0.034,10,80,2,5,1,2");
   WriteIterationCsv(r, out);
   const std::vector<std::string> lines = Lines(out.str());
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[0], kIterationCsvHeader);
   EXPECT_EQ(lines[1],
             "1,300,17,1,0,1,0.5,1,0.75,,0.25,0.5,3,4,1,2,1,3,1,2,1.5,"
-            "0.000,0.000,60.000,0.000,0.000,0.000,0.000,0.000,100.000,,,,,,,,,,,,,,,,,,,,,0,0");
+            "0.000,0.000,60.000,0.000,0.000,0.000,0.000,0.000,100.000,,,,,,,,,,,,,,,,,,,,,0,0,0");
   // No target: no label, no truth, no push; an undefined accuracy is empty too.
   EXPECT_EQ(lines[2],
             "2,300,,,,0,0.5,1,,,0.25,0.5,3,4,1,2,,,,,,"
-            "0.000,0.000,60.000,0.000,0.000,0.000,0.000,0.000,100.000,,,,,,,,,,,,,,,,,,,,,0,0");
+            "0.000,0.000,60.000,0.000,0.000,0.000,0.000,0.000,100.000,,,,,,,,,,,,,,,,,,,,,0,0,0");
 }
 
 TEST(SummaryJson, CountsTheFailedRunsAndSpreadsTheFinalScores) {
@@ -95,6 +96,7 @@ TEST(SummaryJson, CountsTheFailedRunsAndSpreadsTheFinalScores) {
       << json;
   EXPECT_NE(json.find("\"iteration_order\": \"capture, ComputeMaps, score"), std::string::npos);
   EXPECT_NE(json.find("\"session_id\": \"s2\""), std::string::npos);
+  EXPECT_NE(json.find("\"objects_left_out\": 0"), std::string::npos);
   EXPECT_NE(json.find("\"iteration\": 100"), std::string::npos);    // mean iteration time
   EXPECT_NE(json.find("\"compute_maps\": 60"), std::string::npos);  // its breakdown
   // The soft precision is undefined in every replication: null, not a number.
