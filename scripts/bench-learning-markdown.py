@@ -13,28 +13,22 @@ import csv
 ONLINE_EXCLUDED = {"random_forest", "rbf_svm"}  # batch references, not online learners
 
 
-def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("table")
-    parser.add_argument("--metric", default="balanced_accuracy_mean")
-    parser.add_argument("--lower-is-better", action="store_true")
-    args = parser.parse_args()
-    rows = list(csv.DictReader(open(args.table)))
+def pivot(rows, metric, lower_is_better=False):
+    """The table's lines from table.csv's rows (csv.DictReader's dicts)."""
     streams, learners = [], []
     for r in rows:
         if r["stream"] not in streams:
             streams.append(r["stream"])
         if r["learner"] not in learners:
             learners.append(r["learner"])
-    value = {(r["stream"], r["learner"]): r[args.metric] for r in rows}
-    print("| stream | " + " | ".join(learners) + " |")
-    print("|---" * (len(learners) + 1) + "|")
+    value = {(r["stream"], r["learner"]): r[metric] for r in rows}
+    lines = ["| stream | " + " | ".join(learners) + " |", "|---" * (len(learners) + 1) + "|"]
     totals = {l: [] for l in learners}
     for s in streams:
         cells = {l: value.get((s, l), "") for l in learners}
         numbers = {l: float(v) for l, v in cells.items() if v not in ("", "nan")}
         online = {l: v for l, v in numbers.items() if l not in ONLINE_EXCLUDED}
-        best = (min if args.lower_is_better else max)(online.values()) if online else None
+        best = (min if lower_is_better else max)(online.values()) if online else None
         out = []
         for l in learners:
             if l not in numbers:
@@ -43,9 +37,21 @@ def main():
             totals[l].append(numbers[l])
             text = f"{numbers[l]:.3f}"
             out.append(f"**{text}**" if best is not None and numbers[l] == best else text)
-        print(f"| {s} | " + " | ".join(out) + " |")
+        lines.append(f"| {s} | " + " | ".join(out) + " |")
     mean = [f"{sum(v) / len(v):.3f}" if len(v) == len(streams) else "—" for v in totals.values()]
-    print("| mean | " + " | ".join(mean) + " |")
+    lines.append("| mean | " + " | ".join(mean) + " |")
+    return lines
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("table")
+    parser.add_argument("--metric", default="balanced_accuracy_mean")
+    parser.add_argument("--lower-is-better", action="store_true")
+    args = parser.parse_args()
+    with open(args.table) as f:
+        rows = list(csv.DictReader(f))
+    print("\n".join(pivot(rows, args.metric, args.lower_is_better)))
 
 
 if __name__ == "__main__":

@@ -31,15 +31,16 @@ def final_accuracies(root, name):
             for r in summary["replications"]]
 
 
-def main():
-    root = sys.argv[1] if len(sys.argv) > 1 else "docs/results/kinect"
-    with open(os.path.join(root, "experiments.txt")) as f:
-        setups = [n for n in (line.strip() for line in f) if n and "-" not in n]
-    print("| baseline | other | mean difference (other − baseline) | range "
-          "| baseline better / worse |")
-    print("|---|---|---|---|---|")
+def table(root, setups=None, comparisons=COMPARISONS):
+    """The table's lines: each comparison whose two experiments are kept, setup by setup
+    (default: every setup of ROOT/experiments.txt, in its order)."""
+    if setups is None:
+        with open(os.path.join(root, "experiments.txt")) as f:
+            setups = [n for n in (line.strip() for line in f) if n and "-" not in n]
+    lines = ["| baseline | other | mean difference (other − baseline) | range "
+             "| baseline better / worse |", "|---|---|---|---|---|"]
     for setup in setups:
-        for baseline, ablation in COMPARISONS:
+        for baseline, ablation in comparisons:
             default = final_accuracies(root, setup + baseline)
             other = final_accuracies(root, setup + ablation)
             if default is None or other is None:
@@ -48,9 +49,15 @@ def main():
             differences = [a - d for a, d in pairs]
             better = sum(d - a > TIE for a, d in pairs)
             worse = sum(a - d > TIE for a, d in pairs)
-            print(f"| {setup}{baseline} | {ablation[1:]} | {sum(differences) / len(differences):+.3f} "
-                  f"| {min(differences):+.2f} to {max(differences):+.2f} "
-                  f"| {better} / {worse} of {len(pairs)} |")
+            lines.append(f"| {setup}{baseline} | {ablation[1:]} "
+                         f"| {sum(differences) / len(differences):+.3f} "
+                         f"| {min(differences):+.2f} to {max(differences):+.2f} "
+                         f"| {better} / {worse} of {len(pairs)} |")
+    return lines
+
+
+def main():
+    print("\n".join(table(sys.argv[1] if len(sys.argv) > 1 else "docs/results/kinect")))
 
 
 if __name__ == "__main__":

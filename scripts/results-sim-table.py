@@ -51,17 +51,25 @@ def row(name, summary):
             f"{labels} | {summary['mean_ms']['iteration']:.0f} |")
 
 
-def main():
-    out = sys.argv[1]
-    listed = os.path.join(out, "experiments.txt")
-    order = open(listed).read().split() if os.path.exists(listed) else ORDER
-    names = sys.argv[2:] or [n for n in order if os.path.exists(os.path.join(out, n, "summary.json"))]
-    print("| experiment | classifier | labels | iterations | reps | precision | recall | accuracy | "
+HEADER = ("| experiment | classifier | labels | iterations | reps | precision | recall | accuracy | "
           "soft acc. | comp. pos / neg | failed | mislabelled | ms / it. |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+
+
+def table(out, names=None):
+    """The table's lines: NAMES in that order, or every kept experiment in the listed order."""
+    if not names:
+        listed = os.path.join(out, "experiments.txt")
+        order = open(listed).read().split() if os.path.exists(listed) else ORDER
+        names = [n for n in order if os.path.exists(os.path.join(out, n, "summary.json"))]
+    lines = [HEADER, "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for name in names:
         with open(os.path.join(out, name, "summary.json")) as f:
-            print(row(name, json.load(f)))
+            lines.append(row(name, json.load(f)))
+    return lines
+
+
+def main():
+    print("\n".join(table(sys.argv[1], sys.argv[2:])))
 
 
 if __name__ == "__main__":
