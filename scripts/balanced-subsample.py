@@ -4,7 +4,7 @@
 usage: balanced-subsample.py IN.csv N > OUT.csv
 
 A robot that explores with the choice map labels both classes about equally
-(docs/results.md §S2.4), while a simulator export holds every supervoxel of
+(docs/history/results-2026-11-12.md §S2.7), while a simulator export holds every supervoxel of
 every frame (a few percent moveable): this turns the export into the training
 stream such a robot would have collected over all the frames — every
 (count/N)-th sample of each class, in file order, deterministically.
