@@ -35,7 +35,7 @@ std::shared_ptr<grpc::ServerCredentials> CredentialsOf(const ServerOptions& opti
 
 }  // namespace
 
-StatusOr<Serving> StartServing(const ServerOptions& options, grpc::Service& service) {
+StatusOr<Serving> StartServing(const ServerOptions& options, int threads, grpc::Service& service) {
   grpc::EnableDefaultHealthCheckService(true);
   // Links health.proto's descriptors into the generated pool that reflection reads
   // (gRPC's own health service does not register them, grpc/grpc#36665).
@@ -47,9 +47,9 @@ StatusOr<Serving> StartServing(const ServerOptions& options, grpc::Service& serv
   builder.AddListeningPort(options.listen, CredentialsOf(options), &serving.port);
   // A bounded pool of worker threads: when every thread is busy, gRPC answers new
   // calls with RESOURCE_EXHAUSTED instead of queueing them without bound.
-  grpc::ResourceQuota quota("relmap-server");
-  quota.SetMaxThreads(options.max_threads);
-  builder.SetResourceQuota(quota);
+  serving.quota = std::make_unique<grpc::ResourceQuota>("relmap-server");
+  serving.quota->SetMaxThreads(threads);
+  builder.SetResourceQuota(*serving.quota);
   builder.SetMaxReceiveMessageSize(options.max_message_mb << 20);
   builder.SetMaxSendMessageSize(options.max_message_mb << 20);
   builder.RegisterService(&service);

@@ -46,17 +46,30 @@ int main(int argc, char** argv) {
     return 1;
   }
   const auto registry = BuildRegistry(options, store->get());
-  relmap::service::RelevanceService service(*registry, ServiceLimitsOf(options),
+  const WorkerSizingPolicy sizing = WorkerSizingOf(options);
+  const WorkerPool pool = SizeWorkerPool(sizing, 0);
+  relmap::service::RelevanceService service(*registry, ServiceLimitsOf(options, pool),
                                             AdminKeyHashOf(options));
 
-  auto serving = StartServing(options, service);
+  auto serving = StartServing(options, pool.threads, service);
   if (!serving.ok()) {
     spdlog::error("{}", serving.status().message());
     return 1;
   }
-  spdlog::info("relmap-server listening on {} (port {}, {}, at most {} worker threads)",
-               options.listen, serving->port, options.tls_cert.empty() ? "plaintext" : "TLS",
-               options.max_threads);
+  const bool sized = !sizing.fixed_threads || !sizing.fixed_queued_frames;
+  spdlog::info(
+      "relmap-server listening on {} (port {}, {}, {} worker threads and {} waiting frames{})",
+      options.listen, serving->port, options.tls_cert.empty() ? "plaintext" : "TLS", pool.threads,
+      pool.queued_frames,
+      sized ? fmt::format(", growing with the sessions up to {} waiting",
+                          SizeWorkerPool(sizing, sizing.max_queued_frames).queued_frames)
+            : std::string());
+  // Under the registry's lock, so that the sizes arrive in order.
+  registry->set_size_observer([&sizing, &service, quota = serving->quota.get()](std::size_t n) {
+    const WorkerPool resized = SizeWorkerPool(sizing, n);
+    service.SetQueuedFrames(resized.queued_frames);
+    quota->SetMaxThreads(resized.threads);
+  });
   auto metrics = StartMetricsEndpoint(options, service);
   if (!metrics.ok()) {
     spdlog::error("{}", metrics.status().message());
@@ -74,6 +87,7 @@ int main(int argc, char** argv) {
     // No call runs any more: hand the sessions over, so another server sharing the
     // store takes them at once instead of after their leases.
     registry->ReleaseAll();
+    registry->set_size_observer({});
   }
   spdlog::info("relmap-server stopped");
   return 0;

@@ -25,9 +25,9 @@ constexpr std::string_view kUsage =
     "usage: relmap-server [--listen 127.0.0.1:50051] [--max-message-mb 64] [--max-sessions 1000]\n"
     "                     [--max-points 1228800] [--port-file PATH] [--data-dir DIR]\n"
     "                     [--admin-key-file PATH] [--tls-cert FILE --tls-key FILE]\n"
-    "                     [--max-threads 16] [--metrics-listen 127.0.0.1:9464]\n"
+    "                     [--max-threads AUTO] [--metrics-listen 127.0.0.1:9464]\n"
     "                     [--metrics-port-file PATH] [--frames-per-session 8]\n"
-    "                     [--max-concurrent-frames CORES] [--max-queued-frames THREADS/2]\n"
+    "                     [--max-concurrent-frames CORES] [--max-queued-frames AUTO]\n"
     "                     [--max-frame-wait-ms 60000]\n"
     "                     [--store sqlite:PATH|postgres://...] [--lease-seconds 10]\n"
     "                     [--drain-seconds 0] [--session-idle-expiry-seconds 0]\n"
@@ -47,6 +47,9 @@ constexpr std::string_view kUsage =
     "                (as 'x-relmap-admin-key' metadata); default $RELMAP_ADMIN_KEY, or none\n"
     "  --tls-cert, --tls-key  serve TLS with this PEM certificate chain and private key\n"
     "  --max-threads  bound of the worker threads; calls beyond it get RESOURCE_EXHAUSTED\n"
+    "                (default: sized from the sessions in memory, a waiting place and a\n"
+    "                thread for each, so that every robot is served in turn; with it the\n"
+    "                pool is fixed)\n"
     "  --metrics-listen  serve Prometheus metrics at http://ADDR/metrics (IPv4 host:port)\n"
     "  --snapshot-every  with --data-dir: store a model snapshot every N samples of a\n"
     "                session, so a restart relearns at most N (default 500; 0 never)\n"
@@ -61,8 +64,10 @@ constexpr std::string_view kUsage =
     "                older one gets FAILED_PRECONDITION (default 8, at most 256)\n"
     "  --max-concurrent-frames  calls that process a cloud (ComputeMaps, PostOutcome with\n"
     "                an after cloud) running at once (default: the machine's cores)\n"
-    "  --max-queued-frames  such calls waiting for a slot, first come first served (default\n"
-    "                half of --max-threads, leaving the rest to cheap calls); more\n"
+    "  --max-queued-frames  such calls waiting for a slot, in turn by session (default: the\n"
+    "                sessions in memory + 2, at least 8, at most what a quarter of the RAM\n"
+    "                holds at --max-message-mb each; half of --max-threads when that is\n"
+    "                given); more\n"
     "                get RESOURCE_EXHAUSTED with a grpc-retry-pushback-ms trailer\n"
     "  --max-frame-wait-ms  the longest such a call waits for its turn before it is\n"
     "                refused; its deadline ends it sooner (default 60000, at most 600000)\n"
@@ -214,7 +219,9 @@ ServerOptions ParseServerOptions(int argc, char** argv) {
   if (options.tls_cert.empty() != options.tls_key.empty()) {
     ExitWithError("relmap-server", "--tls-cert and --tls-key go together");
   }
-  if (options.max_threads < 2) ExitWithError("relmap-server", "--max-threads must be at least 2");
+  if (options.max_threads != 0 && options.max_threads < 2) {
+    ExitWithError("relmap-server", "--max-threads must be at least 2");
+  }
   if (options.max_message_mb < 1 || options.max_sessions < 1 || options.max_points < 1 ||
       options.max_features_per_request < 1 || options.frames_per_session < 1) {
     ExitWithError("relmap-server", "limits must be positive");
@@ -247,7 +254,7 @@ ServerOptions ParseServerOptions(int argc, char** argv) {
   if (options.max_concurrent_frames == 0) {
     options.max_concurrent_frames = std::max(1u, std::thread::hardware_concurrency());
   }
-  if (options.max_queued_frames == 0) {
+  if (options.max_queued_frames == 0 && options.max_threads != 0) {
     options.max_queued_frames = static_cast<std::size_t>(options.max_threads) / 2;
   }
   return options;

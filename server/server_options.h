@@ -33,7 +33,7 @@ struct ServerOptions {
   std::string admin_key;
   std::string tls_cert;
   std::string tls_key;
-  int max_threads = 16;
+  int max_threads = 0;  // 0: sized from the sessions in memory (worker_sizing.h)
   std::size_t snapshot_every = 500;
   // Also a snapshot once the samples since the last took this long to learn (0: never).
   long long snapshot_after_learning_ms = 500;
@@ -45,7 +45,8 @@ struct ServerOptions {
   // Calls that process a cloud: running at once (default: the machine's cores) and
   // waiting for a slot, beyond which they are refused (session/frame_admission.h).
   std::size_t max_concurrent_frames = 0;  // 0: std::thread::hardware_concurrency()
-  std::size_t max_queued_frames = 0;      // 0: half of max_threads
+  // 0: half of max_threads when that is given, else sized from the sessions.
+  std::size_t max_queued_frames = 0;
   // The longest a call waits in that queue before it is refused; its client's deadline
   // ends it sooner. Longer than one round-robin turn of all sessions, or a refused call
   // loses its place and waits the turn again (docs/reliability.md, "Fairness").

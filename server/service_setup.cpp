@@ -38,15 +38,24 @@ std::unique_ptr<session::SessionRegistry> BuildRegistry(const ServerOptions& opt
   return registry;
 }
 
-service::ServiceLimits ServiceLimitsOf(const ServerOptions& options) {
+service::ServiceLimits ServiceLimitsOf(const ServerOptions& options, const WorkerPool& pool) {
   service::ServiceLimits limits;
   limits.decode.max_points = options.max_points;
   limits.decode.max_bytes = static_cast<long long>(options.max_message_mb) << 20;
   limits.max_features_per_request = options.max_features_per_request;
   limits.concurrent_frames = options.max_concurrent_frames;
-  limits.queued_frames = options.max_queued_frames;
+  limits.queued_frames = pool.queued_frames;
   limits.max_frame_wait = std::chrono::milliseconds(options.max_frame_wait_ms);
   return limits;
+}
+
+WorkerSizingPolicy WorkerSizingOf(const ServerOptions& options) {
+  WorkerSizingPolicy policy;
+  policy.concurrent_frames = options.max_concurrent_frames;
+  policy.max_queued_frames = QueuedFramesMemoryBound(PhysicalMemoryBytes(), options.max_message_mb);
+  if (options.max_threads != 0) policy.fixed_threads = options.max_threads;
+  if (options.max_queued_frames != 0) policy.fixed_queued_frames = options.max_queued_frames;
+  return policy;
 }
 
 std::string AdminKeyHashOf(const ServerOptions& options) {

@@ -1,5 +1,5 @@
 // What relmap-server builds from its options before it serves: the store, the
-// registry over it, and the service's limits and admin key.
+// registry over it, the service's limits and admin key, and the worker pool's sizing.
 #pragma once
 
 #include <memory>
@@ -10,6 +10,7 @@
 #include "service/relevance_service.h"
 #include "session/session_registry.h"
 #include "session/session_store.h"
+#include "worker_sizing.h"
 
 namespace relmap::server {
 
@@ -22,7 +23,12 @@ StatusOr<std::unique_ptr<session::SessionStore>> OpenConfiguredStore(const Serve
 std::unique_ptr<session::SessionRegistry> BuildRegistry(const ServerOptions& options,
                                                         session::SessionStore* store);
 
-service::ServiceLimits ServiceLimitsOf(const ServerOptions& options);
+// The limits of the options; the frame queue's bound is `pool`'s, which the sessions move.
+service::ServiceLimits ServiceLimitsOf(const ServerOptions& options, const WorkerPool& pool);
+
+// The worker pool's sizing: fixed where --max-threads or --max-queued-frames say so, else
+// from the sessions, bounded by this machine's memory.
+WorkerSizingPolicy WorkerSizingOf(const ServerOptions& options);
 
 // SHA-256 hex of --admin-key, or empty without one.
 std::string AdminKeyHashOf(const ServerOptions& options);

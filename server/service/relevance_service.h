@@ -62,6 +62,8 @@ class RelevanceService final : public v1::RelevanceService::Service {
                                 v1::ClassifyFeaturesResponse* response) override;
   grpc::Status AddSamples(grpc::ServerContext* context, const v1::AddSamplesRequest* request,
                           v1::AddSamplesResponse* response) override;
+  // The bound on the frame calls waiting for a slot (server/worker_sizing.h).
+  void SetQueuedFrames(std::size_t queued) { intake_.admission().set_queue_bound(queued); }
   // Per-RPC counters and latencies, sessions and samples, in Prometheus's text format.
   std::string MetricsText() const;
 

@@ -71,4 +71,14 @@ std::size_t FrameAdmission::waiting() const {
   return waiting_;
 }
 
+std::size_t FrameAdmission::queue_bound() const {
+  std::lock_guard lock(mutex_);
+  return queued_;
+}
+
+void FrameAdmission::set_queue_bound(std::size_t queued) {
+  std::lock_guard lock(mutex_);
+  queued_ = queued;
+}
+
 }  // namespace relmap::session

@@ -1,6 +1,7 @@
 // Admission of the calls that process a whole cloud (ComputeMaps, PostOutcome with an
 // after cloud): tens to hundreds of milliseconds of CPU each. At most `concurrent` run
-// at once, at most `queued` more wait for a slot, and any other is refused at once.
+// at once, at most `queued` more wait for a slot, and any other is refused at once; the
+// server sizes `queued` from its sessions (server/worker_sizing.h).
 // Without it, a full worker pool of frames on a 2-core machine made every call slow
 // and starved the 1 ms outcomes, which lost the race for a worker thread to the
 // frames (measured with relmap-load at 64 sessions: PostOutcome p99 12–32 s).
@@ -51,6 +52,9 @@ class FrameAdmission {
 
   std::size_t running() const;
   std::size_t waiting() const;
+  std::size_t queue_bound() const;
+  // A new bound on the waiting calls; calls already waiting beyond it keep their place.
+  void set_queue_bound(std::size_t queued);
 
  private:
   struct Waiter {
@@ -63,8 +67,8 @@ class FrameAdmission {
   void Withdraw(const std::string& session, const Waiter* waiter);
 
   const std::size_t concurrent_;
-  const std::size_t queued_;
   mutable std::mutex mutex_;
+  std::size_t queued_;  // guarded by mutex_
   std::condition_variable admitted_;
   std::size_t running_ = 0;
   std::size_t waiting_ = 0;

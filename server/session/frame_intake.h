@@ -67,6 +67,8 @@ class FrameIntake {
   Taken Take(const EncodedCloud& encoded, std::chrono::system_clock::time_point deadline,
              std::string_view session = {});
 
+  FrameAdmission& admission() { return admission_; }
+
  private:
   StatusOr<perception::Cloud> Decode(const EncodedCloud& encoded) const;
 

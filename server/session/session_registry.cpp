@@ -48,6 +48,7 @@ StatusOr<SessionRegistry::Created> SessionRegistry::Create(SessionSettings setti
     if (Status status = store_->CreateSession(record); !status.ok()) return status;
   }
   sessions_.emplace(shared->id(), shared);
+  SizeChanged();
   lock.unlock();
   shared->RecordSummary();  // so that a listing need not load it before its first sample
   return Created{std::move(shared), std::move(token)};
@@ -75,6 +76,7 @@ StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) 
   const auto forget = [&] {
     std::unique_lock lock(mutex_);
     sessions_.erase(id);
+    SizeChanged();
   };
   if (auto session = resident()) {
     if (store_ == nullptr) return session;
@@ -103,6 +105,7 @@ StatusOr<std::shared_ptr<Session>> SessionRegistry::Find(const std::string& id) 
   (*loaded)->set_policy(policy_);
   std::unique_lock lock(mutex_);
   sessions_.emplace(id, *loaded);
+  SizeChanged();
   stored_last_used_.erase(id);
   return loaded;
 }
@@ -222,6 +225,7 @@ std::vector<std::string> SessionRegistry::EvictIdle(std::int64_t cutoff_unix_ms)
       ++it;
     }
   }
+  SizeChanged();
   lock.unlock();
   Unload(unloaded);
   unloaded.clear();
@@ -271,6 +275,7 @@ std::vector<std::string> SessionRegistry::ExpireIdle(std::int64_t cutoff_unix_ms
       ++it;
     }
   }
+  SizeChanged();
   if (!expired.empty()) ReturnFreedMemory();
   if (!stored_ids) return expired;
   // Forget the ids the store no longer has (deleted by a call or by another server).
@@ -288,12 +293,23 @@ std::vector<std::string> SessionRegistry::ExpireIdle(std::int64_t cutoff_unix_ms
   return expired;
 }
 
+void SessionRegistry::set_size_observer(SizeObserver observer) {
+  std::unique_lock lock(mutex_);
+  size_observer_ = std::move(observer);
+  SizeChanged();
+}
+
+void SessionRegistry::SizeChanged() const {
+  if (size_observer_) size_observer_(sessions_.size());
+}
+
 void SessionRegistry::ReleaseAll() {
   std::unique_lock lock(mutex_);
   if (store_ == nullptr) return;  // memory is the only copy: nothing to hand over
   std::vector<std::shared_ptr<Session>> released;
   for (auto& [id, session] : sessions_) released.push_back(std::move(session));
   sessions_.clear();
+  SizeChanged();
   lock.unlock();
   Unload(released);
 }
@@ -312,6 +328,7 @@ Status SessionRegistry::Delete(const std::string& id) {
     deleted = std::move(it->second);
     sessions_.erase(it);
   }
+  SizeChanged();
   stored_last_used_.erase(id);
   lock.unlock();
   deleted.reset();

@@ -43,6 +43,12 @@ class SessionRegistry {
   using Loader = std::function<StatusOr<std::shared_ptr<Session>>(const std::string& id)>;
   void set_loader(Loader loader) { loader_ = std::move(loader); }
 
+  // Told the number of sessions in memory each time it changes, in order (it is called
+  // under the registry's lock, so it must not call the registry). The server sizes its
+  // worker pool and frame queue by it (server/worker_sizing.h).
+  using SizeObserver = std::function<void(std::size_t sessions)>;
+  void set_size_observer(SizeObserver observer);
+
   // The sessions in memory now.
   std::vector<std::shared_ptr<Session>> Resident() const;
   // Drops from memory the sessions of a store-backed registry that no call holds
@@ -110,13 +116,16 @@ class SessionRegistry {
   std::optional<Listed> ListedOf(const SessionSummary& summary) const;
   // Records the summaries of sessions leaving memory, then gives up their ownership.
   void Unload(const std::vector<std::shared_ptr<Session>>& sessions);
+  // Tells the size observer, with mutex_ held.
+  void SizeChanged() const;
 
   const std::size_t max_sessions_;
   SessionStore* const store_;
   SessionPolicy policy_;
   StoredSettingsDecoder decode_settings_;
   Loader loader_;
-  std::mutex load_mutex_;  // one load at a time, so an id is never loaded twice
+  SizeObserver size_observer_;  // guarded by mutex_
+  std::mutex load_mutex_;       // one load at a time, so an id is never loaded twice
   mutable std::shared_mutex mutex_;
   std::unordered_map<std::string, std::shared_ptr<Session>> sessions_;
   // Last use of the stored sessions not in memory that ExpireIdle has seen (unix ms).

@@ -4,6 +4,7 @@
 // waits longer than --max-frame-wait-ms is turned away too.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <optional>
 #include <string>
@@ -110,6 +111,44 @@ TEST(BusyServer, TheClientLibraryRepeatsWhatABusyServerTurnedAway) {
       SendCloudsAtOnce({"--max-concurrent-frames", "1", "--max-queued-frames", "1"});
   EXPECT_EQ(sent.served, kClients);
   EXPECT_GT(sent.turned_away, 0u);
+}
+
+// Without a flag the server sizes its pool from its sessions (server/worker_sizing.h):
+// 24 robots, each sending a frame at once, all wait their turn and none is turned away.
+// With the old fixed pool (16 threads, 8 waiting) most were.
+TEST(BusyServer, ByDefaultEverySessionsFrameWaitsItsTurn) {
+  constexpr int kSessions = 24;
+  testing::ServerProcess server({"--max-concurrent-frames", "1"});
+  client::RelevanceClient client(server.address());
+  std::vector<client::SessionHandle> sessions(kSessions);
+  for (client::SessionHandle& session : sessions) {
+    ASSERT_TRUE(client.CreateSession({}, &session).ok());
+  }
+  const v1::Cloud cloud = testing::PackedTabletop(160, 120);
+  auto stub = v1::RelevanceService::NewStub(server.Channel());
+  std::atomic<int> ok = 0;
+  std::vector<grpc::StatusCode> refused(kSessions, grpc::StatusCode::OK);
+  std::vector<std::thread> robots;
+  for (int i = 0; i < kSessions; ++i) {
+    robots.emplace_back([&, i] {
+      grpc::ClientContext context;
+      context.AddMetadata("authorization", "Bearer " + sessions[i].token);
+      v1::ComputeMapsRequest request;
+      request.set_session_id(sessions[i].id);
+      *request.mutable_cloud() = cloud;
+      request.set_omit_point_labels(true);
+      v1::ComputeMapsResponse response;
+      const grpc::Status status = stub->ComputeMaps(&context, request, &response);
+      if (status.ok()) {
+        ++ok;
+      } else {
+        refused[i] = status.error_code();
+      }
+    });
+  }
+  for (std::thread& t : robots) t.join();
+  EXPECT_EQ(ok.load(), kSessions);
+  EXPECT_EQ(std::count(refused.begin(), refused.end(), grpc::StatusCode::RESOURCE_EXHAUSTED), 0);
 }
 
 }  // namespace

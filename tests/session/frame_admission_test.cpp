@@ -54,6 +54,23 @@ TEST(FrameAdmission, TheQueueIsBoundedAndAWaiterGivesUpAtItsDeadline) {
   EXPECT_EQ(admission.waiting(), 0u);
 }
 
+TEST(FrameAdmission, TheQueueBoundFollowsTheServersSessions) {
+  FrameAdmission admission(1, 0);
+  auto running = admission.Enter(system_clock::now());
+  ASSERT_TRUE(running.has_value());
+  EXPECT_FALSE(admission.Enter(system_clock::now() + milliseconds(1000)).has_value());
+  admission.set_queue_bound(1);
+  EXPECT_EQ(admission.queue_bound(), 1u);
+  std::atomic<bool> admitted = false;
+  std::thread waiter(
+      [&] { admitted = admission.Enter(system_clock::now() + milliseconds(5000)).has_value(); });
+  while (admission.waiting() == 0) std::this_thread::yield();
+  admission.set_queue_bound(0);  // the waiter keeps its place
+  running.reset();
+  waiter.join();
+  EXPECT_TRUE(admitted);
+}
+
 TEST(FrameAdmission, ServesTheWaitingSessionsInTurnHoweverManyCallsOneSends) {
   FrameAdmission admission(1, 10);
   std::optional<FrameAdmission::Ticket> running =

@@ -66,6 +66,17 @@ TEST(SessionRegistry, TheLimitIsResourceExhaustedUntilASessionIsDeleted) {
   EXPECT_TRUE(registry.Create(FeatureSettings(), "config", 0).ok());
 }
 
+// The server sizes its worker pool by what the observer hears.
+TEST(SessionRegistry, TheSizeObserverHearsEveryChangeInOrder) {
+  SessionRegistry registry(4);
+  std::vector<std::size_t> sizes;
+  registry.set_size_observer([&](std::size_t n) { sizes.push_back(n); });
+  const std::string first = CreateOne(registry);
+  CreateOne(registry);
+  ASSERT_TRUE(registry.Delete(first).ok());
+  EXPECT_EQ(sizes, (std::vector<std::size_t>{0, 1, 2, 1}));  // told at once, then each change
+}
+
 TEST(SessionRegistry, InvalidSettingsCreateNothing) {
   SessionRegistry registry(2);
   SessionSettings settings = FeatureSettings();
