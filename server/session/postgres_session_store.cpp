@@ -14,7 +14,7 @@
 
 #include "session/postgres_connection.h"
 #include "session/postgres_schema.h"
-#include "session/snapshot_codec.h"
+#include "session/records/snapshot_codec.h"
 #include "session/store_contract.h"
 
 namespace relmap::session {

@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "session/file_lock.h"
-#include "session/snapshot_codec.h"
+#include "session/records/snapshot_codec.h"
 #include "session/sqlite_schema.h"
 #include "session/sqlite_statement.h"
 #include "session/store_contract.h"

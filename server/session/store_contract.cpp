@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "cmm/config.h"
-#include "session/little_endian.h"
+#include "session/records/little_endian.h"
 
 namespace relmap::session {
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "cmm/collaborative_mixture_models.h"
-#include "session/snapshot_codec.h"
+#include "session/records/snapshot_codec.h"
 #include "session/store_contract.h"
 
 namespace relmap::session {
