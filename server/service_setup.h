@@ -9,7 +9,7 @@
 #include "server_options.h"
 #include "service/relevance_service.h"
 #include "session/session_registry.h"
-#include "session/session_store.h"
+#include "session/store/session_store.h"
 
 namespace relmap::server {
 

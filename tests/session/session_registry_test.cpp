@@ -15,7 +15,7 @@
 #include "session/feature_settings.h"
 #include "session/session_listing.h"
 #include "session/session_restore.h"
-#include "session/sqlite_session_store.h"
+#include "session/store/sqlite/sqlite_session_store.h"
 #include "session/store_test_support.h"
 
 namespace relmap::session {

@@ -1,6 +1,6 @@
 // SqliteSessionStore: the store contract on a SQLite file, what only a file can
 // get wrong, and the snapshot blob's codec.
-#include "session/sqlite_session_store.h"
+#include "session/store/sqlite/sqlite_session_store.h"
 
 #include <gtest/gtest.h>
 #include <zlib.h>

@@ -1,5 +1,5 @@
 // The SQL-independent half of the SessionStore contract, shared by the stores.
-#include "session/store_contract.h"
+#include "session/store/store_contract.h"
 
 #include <cmath>
 
