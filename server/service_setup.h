@@ -8,7 +8,7 @@
 #include "common/status.h"
 #include "server_options.h"
 #include "service/relevance_service.h"
-#include "session/session_registry.h"
+#include "session/registry/session_registry.h"
 #include "session/store/session_store.h"
 
 namespace relmap::server {

@@ -15,7 +15,7 @@
 #include "service/authorization.h"
 #include "service/metrics.h"
 #include "session/intake/frame_intake.h"
-#include "session/session_registry.h"
+#include "session/registry/session_registry.h"
 
 namespace relmap::service {
 
