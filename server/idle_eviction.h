@@ -7,7 +7,7 @@
 #include <mutex>
 #include <thread>
 
-#include "session/session_registry.h"
+#include "session/registry/session_registry.h"
 
 namespace relmap::server {
 

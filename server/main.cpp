@@ -14,7 +14,7 @@
 #include "server_options.h"
 #include "service/relevance_service.h"
 #include "service_setup.h"
-#include "session/memory_release.h"
+#include "session/registry/memory_release.h"
 #include "stop_signals.h"
 
 namespace {

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <string>
 
-#include "session/frame_intake.h"
+#include "session/intake/frame_intake.h"
 
 namespace relmap::server {
 
@@ -43,7 +43,7 @@ struct ServerOptions {
   std::size_t max_features_per_request = 100000;
   std::size_t frames_per_session = 8;
   // Calls that process a cloud: running at once (default: the machine's cores) and
-  // waiting for a slot, beyond which they are refused (session/frame_admission.h).
+  // waiting for a slot, beyond which they are refused (session/intake/frame_admission.h).
   std::size_t max_concurrent_frames = 0;  // 0: std::thread::hardware_concurrency()
   // 0: half of max_threads when that is given, else sized from the sessions.
   std::size_t max_queued_frames = 0;

@@ -8,8 +8,8 @@
 #include "common/status.h"
 #include "server_options.h"
 #include "service/relevance_service.h"
-#include "session/session_registry.h"
-#include "session/session_store.h"
+#include "session/registry/session_registry.h"
+#include "session/store/session_store.h"
 #include "worker_sizing.h"
 
 namespace relmap::server {

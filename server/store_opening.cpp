@@ -5,8 +5,8 @@
 #include <string_view>
 #include <system_error>
 
-#include "session/postgres_session_store.h"
-#include "session/sqlite_session_store.h"
+#include "session/store/postgres/postgres_session_store.h"
+#include "session/store/sqlite/sqlite_session_store.h"
 
 namespace relmap::server {
 namespace {

@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "common/status.h"
-#include "session/session_store.h"
+#include "session/store/session_store.h"
 
 namespace relmap::server {
 

@@ -3,7 +3,7 @@
 // The proto's comments state the same ranges (the API's reference). The other numeric
 // fields of the requests are bounded by the server's limits (points, feature vectors per
 // request: RESOURCE_EXHAUSTED) or by the session's state (frame and supervoxel ids), and
-// ListSessions' page size by session/session_listing.h.
+// ListSessions' page size by session/registry/session_listing.h.
 #pragma once
 
 #include <google/protobuf/message.h>

@@ -12,8 +12,8 @@
 #include <string_view>
 
 #include "common/status.h"
+#include "session/registry/session_registry.h"
 #include "session/session.h"
-#include "session/session_registry.h"
 
 namespace relmap::service {
 

@@ -6,9 +6,9 @@
 #include "common/status.h"
 #include "perception/change_detector.h"
 #include "relmap/v1/relevance_service.pb.h"
-#include "session/frame_intake.h"
+#include "session/intake/frame_intake.h"
+#include "session/records/session_record.h"
 #include "session/session.h"
-#include "session/session_record.h"
 #include "session/session_settings.h"
 
 namespace relmap::service {

@@ -10,7 +10,7 @@
 #include "service/config_mapping.h"
 #include "service/payload_mapping.h"
 #include "service/status_mapping.h"
-#include "session/session_listing.h"
+#include "session/registry/session_listing.h"
 
 namespace relmap::service {
 namespace {

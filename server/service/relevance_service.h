@@ -14,8 +14,8 @@
 #include "relmap/v1/relevance_service.grpc.pb.h"
 #include "service/authorization.h"
 #include "service/metrics.h"
-#include "session/frame_intake.h"
-#include "session/session_registry.h"
+#include "session/intake/frame_intake.h"
+#include "session/registry/session_registry.h"
 
 namespace relmap::service {
 
@@ -24,7 +24,7 @@ struct ServiceLimits {
   perception::DecodeLimits decode;
   // Feature vectors in one ClassifyFeatures, AddSamples or ImportSession.
   std::size_t max_features_per_request = 100000;
-  // Calls that process a cloud (session/frame_admission.h): running at once,
+  // Calls that process a cloud (session/intake/frame_admission.h): running at once,
   // waiting, and the longest wait before RESOURCE_EXHAUSTED.
   std::size_t concurrent_frames = 2;
   std::size_t queued_frames = 4;

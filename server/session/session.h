@@ -23,7 +23,7 @@
 #include "perception/change_detector.h"
 #include "perception/frame.h"
 #include "session/session_settings.h"
-#include "session/session_store.h"
+#include "session/store/session_store.h"
 
 namespace relmap::session {
 

@@ -18,9 +18,9 @@
 
 #include "cmm/collaborative_mixture_models.h"
 #include "datasets/synthetic_problems.h"
-#include "session/postgres_session_store.h"
-#include "session/snapshot_codec.h"
-#include "session/sqlite_session_store.h"
+#include "session/records/snapshot_codec.h"
+#include "session/store/postgres/postgres_session_store.h"
+#include "session/store/sqlite/sqlite_session_store.h"
 
 namespace relmap::session {
 namespace {

@@ -20,7 +20,7 @@
 #include "common/pcd/pcd_reader.h"
 #include "common/random.h"
 #include "relmap/v1/relevance_service.pb.h"
-#include "session/snapshot_codec.h"
+#include "session/records/snapshot_codec.h"
 
 namespace {
 

@@ -13,7 +13,7 @@
 
 #include "relmap/v1/relevance_service.pb.h"
 #include "service/relevance_service.h"
-#include "session/session_registry.h"
+#include "session/registry/session_registry.h"
 
 namespace relmap::fuzz {
 namespace {

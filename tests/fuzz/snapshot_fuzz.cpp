@@ -1,4 +1,4 @@
-// libFuzzer target: a stored classifier snapshot (session/snapshot_codec.h), decoded,
+// libFuzzer target: a stored classifier snapshot (session/records/snapshot_codec.h), decoded,
 // restored as a model and asked one prediction. The input is the blob without its
 // CRC-32, which the target appends, so that mutations reach the fields behind it.
 #include <zlib.h>
@@ -9,7 +9,7 @@
 #include <string>
 
 #include "cmm/collaborative_mixture_models.h"
-#include "session/snapshot_codec.h"
+#include "session/records/snapshot_codec.h"
 
 namespace {
 

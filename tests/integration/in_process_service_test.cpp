@@ -26,7 +26,7 @@
 #include "relmap/v1/relevance_service.grpc.pb.h"
 #include "service/relevance_service.h"
 #include "session/credentials.h"
-#include "session/session_registry.h"
+#include "session/registry/session_registry.h"
 
 namespace relmap {
 namespace {

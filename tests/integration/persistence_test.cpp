@@ -15,7 +15,7 @@
 
 #include "integration/server_process.h"
 #include "relmap/v1/relevance_service.grpc.pb.h"
-#include "session/sqlite_session_store.h"
+#include "session/store/sqlite/sqlite_session_store.h"
 
 namespace relmap {
 namespace {

@@ -1,6 +1,6 @@
 // FrameAdmission: at most `concurrent` calls run, at most `queued` wait, the rest are
 // refused at once, and a waiter gives up at its deadline.
-#include "session/frame_admission.h"
+#include "session/intake/frame_admission.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // FrameIntake: admission first, then decoding; a busy intake says so, a cloud that
 // does not decode keeps its decoder's status.
-#include "session/frame_intake.h"
+#include "session/intake/frame_intake.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "session/postgres_session_store.h"
+#include "session/store/postgres/postgres_session_store.h"
 #include "session/store_backend.h"
 #include "support/postgres_instance.h"
 

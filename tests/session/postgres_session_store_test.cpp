@@ -1,7 +1,7 @@
 // PostgresSessionStore: the store contract on PostgreSQL, and ownership between
 // two store instances on one database, as two servers behind a load balancer
 // would use it.
-#include "session/postgres_session_store.h"
+#include "session/store/postgres/postgres_session_store.h"
 
 #include <gtest/gtest.h>
 #include <libpq-fe.h>

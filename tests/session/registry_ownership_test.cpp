@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "session/session_registry.h"
+#include "session/registry/session_registry.h"
 
 namespace relmap::session {
 namespace {

@@ -1,7 +1,7 @@
 // SessionRegistry through its C++ interface: creation within the limit, lookup and
 // deletion, pages in id order, and sessions restored from a store on their first
 // call after eviction.
-#include "session/session_registry.h"
+#include "session/registry/session_registry.h"
 
 #include <gtest/gtest.h>
 
@@ -13,9 +13,9 @@
 
 #include "session/credentials.h"
 #include "session/feature_settings.h"
-#include "session/session_listing.h"
-#include "session/session_restore.h"
-#include "session/sqlite_session_store.h"
+#include "session/registry/session_listing.h"
+#include "session/registry/session_restore.h"
+#include "session/store/sqlite/sqlite_session_store.h"
 #include "session/store_test_support.h"
 
 namespace relmap::session {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cmm/collaborative_mixture_models.h"
-#include "session/snapshot_codec.h"
+#include "session/records/snapshot_codec.h"
 #include "session/store_contract.h"
 #include "support/cmm_training.h"
 

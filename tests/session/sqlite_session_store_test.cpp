@@ -1,6 +1,6 @@
 // SqliteSessionStore: the store contract on a SQLite file, what only a file can
 // get wrong, and the snapshot blob's codec.
-#include "session/sqlite_session_store.h"
+#include "session/store/sqlite/sqlite_session_store.h"
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "cmm/collaborative_mixture_models.h"
-#include "session/snapshot_codec.h"
+#include "session/records/snapshot_codec.h"
 #include "session/store_contract.h"
 
 namespace relmap::session {

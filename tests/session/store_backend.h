@@ -10,7 +10,7 @@
 #include <string>
 
 #include "common/status.h"
-#include "session/session_store.h"
+#include "session/store/session_store.h"
 
 namespace relmap::session::testing {
 

@@ -6,7 +6,7 @@
 #include <cctype>
 #include <filesystem>
 
-#include "session/sqlite_session_store.h"
+#include "session/store/sqlite/sqlite_session_store.h"
 #include "session/store_test_support.h"
 
 namespace relmap::session::testing {

@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-#include "session/sqlite_session_store.h"
+#include "session/store/sqlite/sqlite_session_store.h"
 
 namespace relmap::session::testing {
 

@@ -1,5 +1,5 @@
 // Loading a stored session: record, settings, snapshot, samples, counters.
-#include "session/session_restore.h"
+#include "session/registry/session_restore.h"
 
 #include <spdlog/spdlog.h>
 

@@ -1,5 +1,5 @@
 // SQLite result codes to Status, prepared statements and write transactions.
-#include "session/sqlite_statement.h"
+#include "session/store/sqlite/sqlite_statement.h"
 
 #include <limits>
 #include <utility>

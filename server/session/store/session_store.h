@@ -10,7 +10,7 @@
 
 #include "cmm/snapshot.h"
 #include "common/status.h"
-#include "session/session_record.h"
+#include "session/records/session_record.h"
 
 namespace relmap::session {
 

@@ -1,6 +1,6 @@
 // Schema versions of the PostgreSQL session store. A migration is appended,
 // never edited: a database may be at any earlier version.
-#include "session/postgres_schema.h"
+#include "session/store/postgres/postgres_schema.h"
 
 #include <iterator>
 #include <string>

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "common/status.h"
+#include "session/registry/session_restore.h"
 #include "session/session.h"
-#include "session/session_restore.h"
 
 namespace relmap::session {
 

@@ -10,7 +10,7 @@
 #include "common/status.h"
 #include "perception/cloud.h"
 #include "perception/perception_config.h"
-#include "session/frame_admission.h"
+#include "session/intake/frame_admission.h"
 
 namespace relmap::session {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "common/status.h"
-#include "session/session_registry.h"
+#include "session/registry/session_registry.h"
 
 namespace relmap::session {
 

@@ -1,10 +1,10 @@
 // The SQL-independent half of the SessionStore contract, shared by the stores.
-#include "session/store_contract.h"
+#include "session/store/store_contract.h"
 
 #include <cmath>
 
 #include "cmm/config.h"
-#include "session/little_endian.h"
+#include "session/records/little_endian.h"
 
 namespace relmap::session {
 

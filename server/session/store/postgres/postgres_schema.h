@@ -3,7 +3,7 @@
 #pragma once
 
 #include "common/status.h"
-#include "session/postgres_connection.h"
+#include "session/store/postgres/postgres_connection.h"
 
 namespace relmap::session {
 

@@ -8,10 +8,10 @@
 #include <string>
 
 #include "common/status.h"
+#include "session/records/session_record.h"
 #include "session/session.h"
-#include "session/session_record.h"
 #include "session/session_settings.h"
-#include "session/session_store.h"
+#include "session/store/session_store.h"
 
 namespace relmap::session {
 

@@ -1,7 +1,7 @@
 // SqliteSessionStore: each operation is one transaction on the shared
 // connection; blobs are encoded before the mutex is taken, so that a large
 // snapshot does not hold up appends to other sessions while it is serialised.
-#include "session/sqlite_session_store.h"
+#include "session/store/sqlite/sqlite_session_store.h"
 
 #include <sqlite3.h>
 
@@ -9,11 +9,11 @@
 #include <string>
 #include <utility>
 
-#include "session/file_lock.h"
-#include "session/snapshot_codec.h"
-#include "session/sqlite_schema.h"
-#include "session/sqlite_statement.h"
-#include "session/store_contract.h"
+#include "session/records/snapshot_codec.h"
+#include "session/store/sqlite/file_lock.h"
+#include "session/store/sqlite/sqlite_schema.h"
+#include "session/store/sqlite/sqlite_statement.h"
+#include "session/store/store_contract.h"
 
 namespace relmap::session {
 

@@ -1,6 +1,6 @@
 // libpq wrappers. Every statement is sent with PQexecParams and binary results,
 // so that no value goes through a text conversion on its way in or out.
-#include "session/postgres_connection.h"
+#include "session/store/postgres/postgres_connection.h"
 
 #include <bit>
 #include <cstring>

@@ -1,7 +1,7 @@
 // PostgresSessionStore: each operation is one transaction on a pooled
 // connection; each write first fences itself on the session's owner row, which
 // also serialises the writes to one session.
-#include "session/postgres_session_store.h"
+#include "session/store/postgres/postgres_session_store.h"
 
 #include <unistd.h>
 
@@ -12,10 +12,10 @@
 #include <random>
 #include <utility>
 
-#include "session/postgres_connection.h"
-#include "session/postgres_schema.h"
-#include "session/snapshot_codec.h"
-#include "session/store_contract.h"
+#include "session/records/snapshot_codec.h"
+#include "session/store/postgres/postgres_connection.h"
+#include "session/store/postgres/postgres_schema.h"
+#include "session/store/store_contract.h"
 
 namespace relmap::session {
 namespace {

@@ -1,7 +1,7 @@
 // A counting semaphore with a bounded number of waiters, served round-robin by session.
 // A freed slot goes straight to the next waiter (running_ does not drop), so that a
 // call arriving meanwhile cannot take it ahead of those in the queue.
-#include "session/frame_admission.h"
+#include "session/intake/frame_admission.h"
 
 #include <algorithm>
 

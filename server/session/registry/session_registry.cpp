@@ -1,5 +1,5 @@
 // Creation, lookup and deletion of sessions.
-#include "session/session_registry.h"
+#include "session/registry/session_registry.h"
 
 #include <spdlog/spdlog.h>
 
@@ -10,7 +10,7 @@
 #include <unordered_set>
 
 #include "session/credentials.h"
-#include "session/memory_release.h"
+#include "session/registry/memory_release.h"
 
 namespace relmap::session {
 

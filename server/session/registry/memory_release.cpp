@@ -1,5 +1,5 @@
 // mallopt and malloc_trim: glibc only.
-#include "session/memory_release.h"
+#include "session/registry/memory_release.h"
 
 #include <malloc.h>
 

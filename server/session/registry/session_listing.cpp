@@ -1,6 +1,6 @@
 // A page token is the id of the page's last session: ids are listed in order, so the
 // next page starts after it whatever was created or deleted in between.
-#include "session/session_listing.h"
+#include "session/registry/session_listing.h"
 
 namespace relmap::session {
 

@@ -1,7 +1,7 @@
 // Encoding and decoding of model snapshots (layout in snapshot_codec.h). Every
 // count is checked against the bytes left before anything is allocated, so a
 // corrupt blob cannot ask for gigabytes.
-#include "session/snapshot_codec.h"
+#include "session/records/snapshot_codec.h"
 
 #include <zlib.h>
 
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "session/little_endian.h"
-#include "session/session_record.h"
+#include "session/records/little_endian.h"
+#include "session/records/session_record.h"
 
 namespace relmap::session {
 namespace {

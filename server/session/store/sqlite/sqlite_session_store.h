@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "common/status.h"
-#include "session/session_store.h"
+#include "session/store/session_store.h"
 
 namespace relmap::session {
 

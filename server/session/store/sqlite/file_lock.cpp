@@ -1,5 +1,5 @@
 // flock(2) on a file of its own.
-#include "session/file_lock.h"
+#include "session/store/sqlite/file_lock.h"
 
 #include <fcntl.h>
 #include <sys/file.h>

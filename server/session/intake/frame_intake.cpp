@@ -1,5 +1,5 @@
 // Admission before decoding: a decode is itself work a busy server must not start.
-#include "session/frame_intake.h"
+#include "session/intake/frame_intake.h"
 
 #include <algorithm>
 #include <string>

@@ -1,12 +1,12 @@
 // Schema versions of the SQLite session store. A migration is appended, never
 // edited: a database on disk may be at any earlier version.
-#include "session/sqlite_schema.h"
+#include "session/store/sqlite/sqlite_schema.h"
 
 #include <iterator>
 #include <string>
 #include <string_view>
 
-#include "session/sqlite_statement.h"
+#include "session/store/sqlite/sqlite_statement.h"
 
 namespace relmap::session {
 namespace {
