@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The paper's simulated experiments (docs/results.md §S0) and the benchmark scenes:
+# The paper's simulated experiments (docs/results.md §K) and the benchmark scenes:
 # each setup in oracle mode with the default classifier, 10 replications, the
 # ablations side by side (one component per class, paper2018, random sampling) and
 # physical labelling. Needs the build (scripts/configure-build.sh), or RELMAP_SIM naming a
