@@ -89,5 +89,11 @@ export RELMAP_TOKEN=$(json_field sessionToken <<<"$features")
 echo "== relmap-sim: MoveableBalls, oracle mode (the paper's simplified setup)"
 build/sim_backend/relmap-sim run --scene MoveableBalls --mode oracle --iterations "${ITERATIONS:-100}" \
   --replications 2 --seed "$seed" --out "$out/sim"
+# What learning does to a map: the first replication's relevance map at its first push (a
+# session that has learned nothing maps every supervoxel 0.5) and at its last.
+cp "$out/sim/relevance-0-1.png" "$out/relevance-before-learning.png"
+cp "$out/sim/relevance-0-${ITERATIONS:-100}.png" "$out/relevance-after-learning.png"
+echo "a session's relevance map before and after learning: $out/relevance-before-learning.png," \
+  "$out/relevance-after-learning.png"
 echo "reports, learning curves, segmentation.png, relevance.png and choice.png are in $out/;"
 echo "the simulated run's maps (relevance-*.png, choice-*.png) and curves (accuracy.png, ...) in $out/sim/"
