@@ -40,16 +40,17 @@ StatusOr<std::vector<int>> SnapshotList(const std::string& text, int iterations)
   return snapshots;
 }
 
-// The words of a flag that names one of two choices; parsing and naming read the
-// same table.
+// The words of a flag that names one of N choices (two unless said); parsing and naming
+// read the same table.
 template <typename Enum, std::size_t N = 2>
 using Words = std::array<std::pair<Enum, const char*>, N>;
 constexpr Words<LabellingMode> kModes = {
     {{LabellingMode::kOracle, "oracle"}, {LabellingMode::kPhysical, "physical"}}};
 constexpr Words<TargetSampling> kSamplings = {
     {{TargetSampling::kChoice, "choice"}, {TargetSampling::kRandom, "random"}}};
-constexpr Words<LabelScope> kLabelScopes = {
-    {{LabelScope::kTarget, "target"}, {LabelScope::kObject, "object"}}};
+constexpr Words<LabelScope, 3> kLabelScopes = {{{LabelScope::kTarget, "target"},
+                                                {LabelScope::kObject, "object"},
+                                                {LabelScope::kMoved, "moved"}}};
 constexpr Words<bool> kOnOff = {{{true, "on"}, {false, "off"}}};
 constexpr Words<v1::ChangeMethod> kChangeMethods = {
     {{v1::CHANGE_METHOD_VISIBILITY, "visibility"}, {v1::CHANGE_METHOD_PAPER2018, "paper2018"}}};
@@ -100,7 +101,7 @@ const char kRunUsage[] =
     "                      [--sampling choice|random] [--parallel 2]\n"
     "                      [--snapshots 1,10,100|none] [--change-min-neighbours N]\n"
     "                      [--resolution WxH] [--change-method visibility|paper2018]\n"
-    "                      [--labels target|object] [--novelty on|off] [--random-share E]\n"
+    "                      [--labels target|object|moved] [--novelty on|off] [--random-share E]\n"
     "                      [--class-balanced on|off]\n"
     "  --mode        oracle: every object re-spawned each iteration, the target labelled\n"
     "                with its ground truth (the paper's simplified setup); physical: the\n"
@@ -116,7 +117,9 @@ const char kRunUsage[] =
     "                object: also the rest of its object: in oracle mode the target's\n"
     "                whole body with its label, as PostOutcomeRequest.object_supervoxels; in\n"
     "                physical mode what the change detector saw move with the target\n"
-    "                (ChangeDetectorConfig.learn_moved_object)\n"
+    "                (ChangeDetectorConfig.learn_moved_object);\n"
+    "                moved: the rest of the object only when the push moves it: in oracle\n"
+    "                mode the body of a moveable target, in physical mode as object\n"
     "  --novelty     the session's choice map weighs supervoxels by their novelty\n"
     "  --random-share  the share of the choice map drawn uniformly, in [0, 1] (0)\n"
     "  --class-balanced  on: the session draws half its pushes among what it thinks\n"

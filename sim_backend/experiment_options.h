@@ -38,6 +38,11 @@ enum class LabelScope {
   // physical: the target and what the change detector saw move with it
   // (ChangeDetectorConfig.learn_moved_object).
   kObject,
+  // Oracle: the target, and every other supervoxel of its body when it is moveable: what a
+  // camera sees move with a push. A body that did not move shows nothing of its extent, and
+  // a support surface is hundreds of supervoxels (docs/method.md §4.5).
+  // physical: as kObject.
+  kMoved,
 };
 
 struct ExperimentOptions {

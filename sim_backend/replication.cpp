@@ -92,7 +92,7 @@ class Replication {
     if (options_.mode == LabellingMode::kPhysical) {
       v1::ChangeDetectorConfig& change = *config.mutable_change_detector();
       change.set_method(options_.change_method);
-      change.set_learn_moved_object(options_.labels == LabelScope::kObject);
+      change.set_learn_moved_object(options_.labels != LabelScope::kTarget);
       change.set_ror_min_neighbours(
           options_.change_min_neighbours.value_or(ScaledMinNeighbours(scene_.Capture().width)));
       // The server judges depths by the noise of the camera that took them.
@@ -209,7 +209,8 @@ class Replication {
     if (options_.mode == LabellingMode::kOracle) {
       const Clock::time_point stage = Clock::now();
       std::vector<std::uint32_t> same_object;
-      if (options_.labels == LabelScope::kObject) {
+      if (options_.labels == LabelScope::kObject ||
+          (options_.labels == LabelScope::kMoved && truth)) {
         StatusOr<std::vector<std::uint32_t>> same = SameBody(frame, maps, index);
         if (!same.ok()) return same.status();
         same_object = std::move(same).value();

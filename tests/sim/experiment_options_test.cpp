@@ -54,6 +54,19 @@ TEST(ExperimentOptions, DefaultSnapshotsEndAtTheLastIteration) {
   EXPECT_TRUE(Parse({"--scene", "s", "--out", "d", "--snapshots", "none"})->snapshots.empty());
 }
 
+TEST(ExperimentOptions, LabelsAreTheTargetTheObjectOrWhatMoved) {
+  EXPECT_EQ(Parse({"--scene", "s", "--out", "d"})->labels, LabelScope::kTarget);
+  for (const auto& [word, scope] :
+       {std::pair{"target", LabelScope::kTarget}, std::pair{"object", LabelScope::kObject},
+        std::pair{"moved", LabelScope::kMoved}}) {
+    const StatusOr<ExperimentOptions> options =
+        Parse({"--scene", "s", "--out", "d", "--labels", word});
+    ASSERT_TRUE(options.ok()) << options.status().message();
+    EXPECT_EQ(options->labels, scope) << word;
+    EXPECT_STREQ(LabelScopeName(scope), word);
+  }
+}
+
 TEST(ExperimentOptions, MisuseIsAnInvalidArgumentNamingTheFlag) {
   const std::vector<std::pair<std::vector<const char*>, std::string>> cases = {
       {{"--out", "d"}, "--scene"},
@@ -62,6 +75,7 @@ TEST(ExperimentOptions, MisuseIsAnInvalidArgumentNamingTheFlag) {
       {{"--scene", "s", "--out", "d", "--iterations", "0"}, "--iterations"},
       {{"--scene", "s", "--out", "d", "--iterations", "1x"}, "--iterations"},
       {{"--scene", "s", "--out", "d", "--alpha", "1.5"}, "--alpha"},
+      {{"--scene", "s", "--out", "d", "--labels", "body"}, "--labels"},
       {{"--scene", "s", "--out", "d", "--snapshots", "1,200"}, "--snapshots"},
       {{"--scene", "s", "--out", "d", "--colour", "red"}, "--colour"},
       {{"--scene", "s", "--out"}, "--out"},

@@ -112,6 +112,29 @@ TEST_F(RunnerEndToEnd, TwentyOracleIterationsLearnWhatMoves) {
   }
 }
 
+// --labels moved names a target's body only when the target is moveable: every
+// not-moveable sample is a target, and the bodies' other supervoxels add moveable ones.
+TEST_F(RunnerEndToEnd, MovedLabelsAddTheBodyOfAMoveableTargetOnly) {
+  ExperimentOptions options;
+  options.iterations = 12;
+  options.labels = LabelScope::kMoved;
+  options.snapshots = {};
+  const ExperimentRun run = Run(options);
+  ASSERT_EQ(run.replications.size(), 1u);
+  std::uint64_t moveable_pushes = 0;
+  std::uint64_t still_pushes = 0;
+  for (const IterationRecord& i : run.replications[0].iterations) {
+    if (!i.truth) continue;
+    ++(*i.truth ? moveable_pushes : still_pushes);
+  }
+  ASSERT_GT(moveable_pushes, 0u);
+  ASSERT_GT(still_pushes, 0u);
+  const IterationRecord& last = run.replications[0].iterations.back();
+  EXPECT_EQ(last.model.non_moveable_samples, still_pushes);
+  EXPECT_EQ(last.model.moveable_samples, moveable_pushes + last.moved_learned);
+  EXPECT_GT(last.moved_learned, 0u);
+}
+
 TEST_F(RunnerEndToEnd, ThePhysicalModePushesAndLearnsTheChangeDetectorsLabels) {
   ExperimentOptions options;
   options.mode = LabellingMode::kPhysical;
