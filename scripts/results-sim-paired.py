@@ -17,7 +17,9 @@ COMPARISONS = (("", "-alpha1"), ("", "-paper2018"), ("", "-random"), ("", "-obje
                ("-physical", "-physical-object"), ("", "-balanced"), ("", "-balanced-object"),
                ("-object", "-balanced-object"), ("-random", "-balanced"),
                ("-paper2018", "-balanced"), ("-random", "-balanced-object"),
-               ("-paper2018", "-balanced-object"))
+               ("-paper2018", "-balanced-object"), ("", "-moved"), ("-object", "-moved"),
+               ("-moved", "-random-moved"), ("-moved", "-paper2018-moved"),
+               ("-physical", "-physical-moved"), ("-moved", "-physical-moved"))
 TIE = 0.005
 
 

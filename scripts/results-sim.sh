@@ -84,6 +84,19 @@ for scene in "${benchmarks[@]}" "${paper[@]}"; do
   run "$scene-physical-object" --scene "$(file_of "$scene")" --mode physical --labels object \
     --iterations 100
 done
+# A push labels the rest of its object only when it moved it (docs/method.md §4.5): what a
+# camera sees; the exploration ablations with the same labels, for a paired comparison.
+for scene in "${benchmarks[@]}" "${paper[@]}"; do
+  run "$scene-moved" --scene "$(file_of "$scene")" --mode oracle --labels moved --iterations 200
+done
+for scene in "${benchmarks[@]}"; do
+  run "$scene-random-moved" --scene "$(file_of "$scene")" --mode oracle --labels moved \
+    --sampling random --iterations 200
+  run "$scene-paper2018-moved" --scene "$(file_of "$scene")" --mode oracle --labels moved \
+    --variant paper2018 --iterations 200
+  run "$scene-physical-moved" --scene "$(file_of "$scene")" --mode physical --labels moved \
+    --iterations 200
+done
 # The class-balanced choice rule (docs/method.md §4.4), alone and with object labels.
 for scene in "${benchmarks[@]}" "${paper[@]}"; do
   run "$scene-balanced" --scene "$(file_of "$scene")" --mode oracle --class-balanced on \
