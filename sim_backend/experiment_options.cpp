@@ -48,9 +48,10 @@ constexpr Words<LabellingMode> kModes = {
     {{LabellingMode::kOracle, "oracle"}, {LabellingMode::kPhysical, "physical"}}};
 constexpr Words<TargetSampling> kSamplings = {
     {{TargetSampling::kChoice, "choice"}, {TargetSampling::kRandom, "random"}}};
-constexpr Words<LabelScope, 3> kLabelScopes = {{{LabelScope::kTarget, "target"},
+constexpr Words<LabelScope, 4> kLabelScopes = {{{LabelScope::kTarget, "target"},
                                                 {LabelScope::kObject, "object"},
-                                                {LabelScope::kMoved, "moved"}}};
+                                                {LabelScope::kMoved, "moved"},
+                                                {LabelScope::kNear, "near"}}};
 constexpr Words<bool> kOnOff = {{{true, "on"}, {false, "off"}}};
 constexpr Words<v1::ChangeMethod> kChangeMethods = {
     {{v1::CHANGE_METHOD_VISIBILITY, "visibility"}, {v1::CHANGE_METHOD_PAPER2018, "paper2018"}}};
@@ -101,7 +102,8 @@ const char kRunUsage[] =
     "                      [--sampling choice|random] [--parallel 2]\n"
     "                      [--snapshots 1,10,100|none] [--change-min-neighbours N]\n"
     "                      [--resolution WxH] [--change-method visibility|paper2018]\n"
-    "                      [--labels target|object|moved] [--novelty on|off] [--random-share E]\n"
+    "                      [--labels target|object|moved|near] [--novelty on|off] [--random-share "
+    "E]\n"
     "                      [--class-balanced on|off]\n"
     "  --mode        oracle: every object re-spawned each iteration, the target labelled\n"
     "                with its ground truth (the paper's simplified setup); physical: the\n"
@@ -119,7 +121,9 @@ const char kRunUsage[] =
     "                physical mode what the change detector saw move with the target\n"
     "                (ChangeDetectorConfig.learn_moved_object);\n"
     "                moved: the rest of the object only when the push moves it: in oracle\n"
-    "                mode the body of a moveable target, in physical mode as object\n"
+    "                mode the body of a moveable target, in physical mode as object;\n"
+    "                near: as moved, and of a still body the 8 supervoxels nearest the\n"
+    "                target (oracle mode)\n"
     "  --novelty     the session's choice map weighs supervoxels by their novelty\n"
     "  --random-share  the share of the choice map drawn uniformly, in [0, 1] (0)\n"
     "  --class-balanced  on: the session draws half its pushes among what it thinks\n"

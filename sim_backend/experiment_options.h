@@ -43,6 +43,10 @@ enum class LabelScope {
   // a support surface is hundreds of supervoxels (docs/method.md §4.5).
   // physical: as kObject.
   kMoved,
+  // Oracle: the body of a moveable target, and of a still one the few supervoxels nearest
+  // the target (body_labels.h): bounded however large the still body.
+  // physical: as kObject.
+  kNear,
 };
 
 struct ExperimentOptions {

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "body_labels.h"
 #include "ground_truth.h"
 #include "grpc_status.h"
 #include "map_snapshots.h"
@@ -209,11 +210,10 @@ class Replication {
     if (options_.mode == LabellingMode::kOracle) {
       const Clock::time_point stage = Clock::now();
       std::vector<std::uint32_t> same_object;
-      if (options_.labels == LabelScope::kObject ||
-          (options_.labels == LabelScope::kMoved && truth)) {
-        StatusOr<std::vector<std::uint32_t>> same = SameBody(frame, maps, index);
+      if (options_.labels != LabelScope::kTarget) {
+        StatusOr<std::vector<int>> same = SameBody(frame, maps, index);
         if (!same.ok()) return same.status();
-        same_object = std::move(same).value();
+        same_object = BodyLabels(options_.labels, truth, maps, index, *same);
       }
       posted = client_.PostOutcome(session_, maps.frame_id(), target.id(),
                                    truth ? v1::LABEL_MOVEABLE : v1::LABEL_NOT_MOVEABLE, request_id,
@@ -257,21 +257,18 @@ class Replication {
     return OkStatus();
   }
 
-  // The ids of the other supervoxels of `maps` that show the body supervoxel `index`
+  // The indices of the other supervoxels of `maps` that show the body supervoxel `index`
   // shows (ground_truth.h): what a push of it moves with it. None when it shows no
   // single body.
-  static StatusOr<std::vector<std::uint32_t>> SameBody(const CameraFrame& frame,
-                                                       const v1::ComputeMapsResponse& maps,
-                                                       int index) {
+  static StatusOr<std::vector<int>> SameBody(const CameraFrame& frame,
+                                             const v1::ComputeMapsResponse& maps, int index) {
     StatusOr<std::vector<std::int32_t>> bodies = SupervoxelBodies(frame, maps);
     if (!bodies.ok()) return bodies.status();
     const std::int32_t body = (*bodies)[static_cast<std::size_t>(index)];
-    std::vector<std::uint32_t> same;
+    std::vector<int> same;
     if (body == kNoBody) return same;
     for (int j = 0; j < maps.supervoxels_size(); ++j) {
-      if (j != index && (*bodies)[static_cast<std::size_t>(j)] == body) {
-        same.push_back(maps.supervoxels(j).id());
-      }
+      if (j != index && (*bodies)[static_cast<std::size_t>(j)] == body) same.push_back(j);
     }
     return same;
   }

@@ -2,6 +2,7 @@
 # over the wire only (client library, proto API) and scores maps with common/metrics.h
 # (pure maths); it includes no header of server/.
 add_library(relmap_sim_runner STATIC
+  body_labels.cpp
   curves.cpp
   dataset_csv.cpp
   dataset_frame.cpp
