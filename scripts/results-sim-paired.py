@@ -19,7 +19,8 @@ COMPARISONS = (("", "-alpha1"), ("", "-paper2018"), ("", "-random"), ("", "-obje
                ("-paper2018", "-balanced"), ("-random", "-balanced-object"),
                ("-paper2018", "-balanced-object"), ("", "-moved"), ("-object", "-moved"),
                ("-moved", "-random-moved"), ("-moved", "-paper2018-moved"),
-               ("-physical", "-physical-moved"), ("-moved", "-physical-moved"))
+               ("-physical", "-physical-moved"), ("-moved", "-physical-moved"), ("", "-near"),
+               ("-object", "-near"), ("-moved", "-near"))
 TIE = 0.005
 
 

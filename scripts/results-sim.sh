@@ -85,9 +85,11 @@ for scene in "${benchmarks[@]}" "${paper[@]}"; do
     --iterations 100
 done
 # A push labels the rest of its object only when it moved it (docs/method.md §4.5): what a
-# camera sees; the exploration ablations with the same labels, for a paired comparison.
+# camera sees; or that and the few supervoxels of a still body nearest the target; the
+# exploration ablations with the same labels, for a paired comparison.
 for scene in "${benchmarks[@]}" "${paper[@]}"; do
   run "$scene-moved" --scene "$(file_of "$scene")" --mode oracle --labels moved --iterations 200
+  run "$scene-near" --scene "$(file_of "$scene")" --mode oracle --labels near --iterations 200
 done
 for scene in "${benchmarks[@]}"; do
   run "$scene-random-moved" --scene "$(file_of "$scene")" --mode oracle --labels moved \
