@@ -1,4 +1,5 @@
-// 1-NN graph, union-find, and centroid agglomeration down to two groups (§3.6).
+// Union-find and centroid agglomeration down to two groups (§3.6); the 1-NN graph
+// itself is in nearest_neighbours.cpp.
 #include "cmm/partition.h"
 
 #include <limits>
@@ -53,6 +54,19 @@ std::vector<int> MergeClosestCentroids(const Points& point, int p, const std::ve
   std::vector<int> survivor(groups);
   std::iota(survivor.begin(), survivor.end(), 0);
   std::vector<bool> active(groups, true);
+  // ‖c_g − c_h‖² of every pair, kept at [g·groups + h] for g < h and recomputed
+  // only for the merged centroid: a group that loses its partner scans this row
+  // instead of recomputing G distances of p coordinates (the same values, so
+  // the same merges).
+  std::vector<double> pair(static_cast<std::size_t>(groups) * static_cast<std::size_t>(groups));
+  const auto at = [&](int g, int h) -> double& {
+    return pair[static_cast<std::size_t>(g) * static_cast<std::size_t>(groups) +
+                static_cast<std::size_t>(h)];
+  };
+  for (int g = 0; g < groups; ++g) {
+    for (int h = g + 1; h < groups; ++h)
+      at(g, h) = (centroid.col(g) - centroid.col(h)).squaredNorm();
+  }
   // Each active group's closest active partner with a higher id; a pair is kept
   // once, at its lower id, which makes ties resolve to the lowest pair.
   std::vector<int> partner(groups, -1);
@@ -62,7 +76,7 @@ std::vector<int> MergeClosestCentroids(const Points& point, int p, const std::ve
     distance[g] = std::numeric_limits<double>::infinity();
     for (int h = g + 1; h < groups; ++h) {
       if (!active[h]) continue;
-      const double d = (centroid.col(g) - centroid.col(h)).squaredNorm();
+      const double d = at(g, h);
       if (d < distance[g]) distance[g] = d, partner[g] = h;
     }
   };
@@ -81,6 +95,14 @@ std::vector<int> MergeClosestCentroids(const Points& point, int p, const std::ve
     for (int g = 0; g < groups; ++g) {
       if (survivor[g] == b) survivor[g] = a;
     }
+    for (int g = 0; g < groups; ++g) {
+      if (!active[g] || g == a) continue;
+      if (g < a) {
+        at(g, a) = (centroid.col(g) - centroid.col(a)).squaredNorm();
+      } else {
+        at(a, g) = (centroid.col(a) - centroid.col(g)).squaredNorm();
+      }
+    }
     // Groups below `a` may now be closest to the moved centroid of `a`; groups
     // that pointed at `a` or `b` must look again.
     for (int g = 0; g < groups; ++g) {
@@ -88,7 +110,7 @@ std::vector<int> MergeClosestCentroids(const Points& point, int p, const std::ve
       if (partner[g] == a || partner[g] == b) {
         refresh(g);
       } else if (g < a) {
-        const double d = (centroid.col(g) - centroid.col(a)).squaredNorm();
+        const double d = at(g, a);
         if (d < distance[g] || (d == distance[g] && a < partner[g]))
           distance[g] = d, partner[g] = a;
       }
@@ -111,22 +133,6 @@ double SquaredDistance(const double* a, int stride_a, const double* b, int strid
 }
 
 namespace {
-
-template <typename Points>
-NearestNeighbourGraph NearestNeighboursOf(const Points& point, int n, int p) {
-  NearestNeighbourGraph graph{std::vector<int>(n, -1),
-                              std::vector<double>(n, std::numeric_limits<double>::infinity())};
-  for (int i = 0; i < n; ++i) {
-    const PointView a = point(i);
-    for (int j = i + 1; j < n; ++j) {
-      const PointView b = point(j);
-      const double d = SquaredDistance(a.first, a.stride, b.first, b.stride, p);
-      if (d < graph.squared_distance[i]) graph.squared_distance[i] = d, graph.nearest[i] = j;
-      if (d < graph.squared_distance[j]) graph.squared_distance[j] = d, graph.nearest[j] = i;
-    }
-  }
-  return graph;
-}
 
 template <typename Points>
 std::vector<int> PartitionInTwoOf(const Points& point, int n, int p,
@@ -154,15 +160,6 @@ std::vector<int> PartitionInTwoOf(const Points& point, int n, int p,
 }
 
 }  // namespace
-
-NearestNeighbourGraph NearestNeighbours(const Eigen::MatrixXd& points) {
-  const int p = static_cast<int>(points.rows());
-  return NearestNeighboursOf(
-      [&](int j) {
-        return PointView{points.col(j).data(), 1};
-      },
-      static_cast<int>(points.cols()), p);
-}
 
 std::vector<int> PartitionInTwo(const Eigen::MatrixXd& points, const std::vector<int>& nearest) {
   const int p = static_cast<int>(points.rows());

@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
+#include "common/random.h"
+
 namespace relmap::cmm {
 namespace {
 
@@ -53,6 +57,33 @@ TEST(PartitionInTwo, ReadsADatasetsSamplesInPlaceAsTheirGatheredCopy) {
   const std::vector<int> expected = PartitionInTwo(gathered, nearest);
   ASSERT_FALSE(expected.empty());
   EXPECT_EQ(PartitionInTwo(data, indices, nearest), expected);
+}
+
+TEST(NearestNeighbours, IsTheGraphOfEveryPairsSquaredDistance) {
+  // 48-d points with duplicates (ties go to the lower index), against the
+  // pairwise SquaredDistance that the incremental update uses: the same bits.
+  Random random(7);
+  Eigen::MatrixXd points(48, 61);
+  for (Eigen::Index j = 0; j < points.cols(); ++j) {
+    for (Eigen::Index k = 0; k < points.rows(); ++k) points(k, j) = random.UniformUnit();
+  }
+  points.col(40) = points.col(3);
+  points.col(50) = points.col(3);
+  const NearestNeighbourGraph graph = NearestNeighbours(points);
+  const int n = static_cast<int>(points.cols());
+  for (int i = 0; i < n; ++i) {
+    int nearest = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < n; ++j) {
+      if (j == i) continue;
+      const double d = SquaredDistance(points.col(i).data(), 1, points.col(j).data(), 1, 48);
+      if (d < best) best = d, nearest = j;
+    }
+    EXPECT_EQ(graph.nearest[i], nearest) << i;
+    EXPECT_EQ(graph.squared_distance[i], best) << i;
+  }
+  EXPECT_EQ(graph.nearest[40], 3);
+  EXPECT_EQ(graph.nearest[3], 40);
 }
 
 TEST(PartitionInTwo, NeedsTwoPoints) { EXPECT_TRUE(PartitionInTwo(Columns({{1, 1}})).empty()); }
