@@ -61,6 +61,17 @@ double TemperatureSlope(double log_odds, double temperature) {
   return log_odds * Sigmoid(-temperature * log_odds);
 }
 
+ProbabilityAndSlope LogProbabilityAndSlope(double log_odds, double temperature) {
+  // As LogSigmoid(t) and Sigmoid(s) with t = τz and s = −τz = −t: for t < 0
+  // both take e^t, for t >= 0 both e^−t (at t = 0 both 1).
+  const double t = temperature * log_odds;
+  const double s = -temperature * log_odds;
+  const double e = std::exp(t < 0.0 ? t : -t);
+  const double log_probability = t < 0.0 ? t - std::log1p(e) : -std::log1p(e);
+  const double wrong = s >= 0.0 ? 1.0 / (1.0 + e) : e / (1.0 + e);
+  return {log_probability, log_odds * wrong};
+}
+
 double FitTemperature(std::span<const double> z, std::span<const double> w, double start) {
   double low = 0.0;
   double high = 1.0;

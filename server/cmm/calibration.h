@@ -37,4 +37,13 @@ double FitTemperature(std::span<const double> log_odds, std::span<const double> 
 // z σ(−τz), one sample's term of the derivative in τ of Σ_i log σ(τ z_i).
 double TemperatureSlope(double log_odds, double temperature);
 
+// LogCalibratedProbability(z, {τ, 0}) and TemperatureSlope(z, τ) from one exp:
+// log σ(τz) and σ(−τz) need the same e^−|τz|, so both come out with the bits of
+// the two calls.
+struct ProbabilityAndSlope {
+  double log_probability;
+  double slope;
+};
+ProbabilityAndSlope LogProbabilityAndSlope(double log_odds, double temperature);
+
 }  // namespace relmap::cmm

@@ -200,12 +200,19 @@ class CollaborativeMixtureModels {
   Eigen::VectorXd sample_log_probability_;
   std::optional<double> log_likelihood_;
   // Σ_i z_i σ(−τ z_i) of the current log-odds at the current τ, and Σ of its
-  // terms' magnitudes, for CannotImprove; kept with log_likelihood_.
+  // terms' magnitudes, for CannotImprove; kept with log_likelihood_, and each
+  // sample's term in current_row_slope_.
   struct Slope {
     double gradient = 0.0;
     double magnitude = 0.0;
   };
   std::optional<Slope> current_slope_;
+  Eigen::VectorXd current_row_slope_;
+  // Whether CannotImprove applies: a calibrated temperature without label noise.
+  bool BoundsByTemperatureSlope() const;
+  // Fills current_row_slope_ and current_slope_ for `log_probability` (null: do
+  // not write) at the current τ, from one exp per sample.
+  void FillCurrentSlope(Eigen::VectorXd* log_probability);
   std::uint64_t splits_ = 0;
   std::uint64_t merges_ = 0;
 };

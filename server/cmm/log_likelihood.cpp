@@ -280,15 +280,40 @@ const Eigen::VectorXd& CollaborativeMixtureModels::CurrentLogOdds() {
 
 double CollaborativeMixtureModels::LogLikelihood() {
   if (log_likelihood_) return *log_likelihood_;
-  sample_log_probability_ = SampleLogProbabilities(CurrentLogOdds(), calibration_);
-  log_likelihood_ = sample_log_probability_.sum();
+  const Eigen::VectorXd& log_odds = CurrentLogOdds();
   current_slope_.reset();
+  if (BoundsByTemperatureSlope() && calibration_.label_noise <= 0.0) {
+    // The probabilities and CannotImprove's slopes share their exp.
+    sample_log_probability_.resize(log_odds.size());
+    FillCurrentSlope(&sample_log_probability_);
+  } else {
+    sample_log_probability_ = SampleLogProbabilities(log_odds, calibration_);
+  }
+  log_likelihood_ = sample_log_probability_.sum();
   return *log_likelihood_;
+}
+
+bool CollaborativeMixtureModels::BoundsByTemperatureSlope() const {
+  return config_.prediction == Prediction::kCalibrated && !config_.fit_label_noise;
+}
+
+void CollaborativeMixtureModels::FillCurrentSlope(Eigen::VectorXd* log_probability) {
+  const double tau = calibration_.temperature;
+  current_row_slope_.resize(sample_log_odds_.size());
+  Slope sum;
+  for (Eigen::Index i = 0; i < sample_log_odds_.size(); ++i) {
+    const ProbabilityAndSlope at = LogProbabilityAndSlope(sample_log_odds_[i], tau);
+    if (log_probability != nullptr) (*log_probability)[i] = at.log_probability;
+    current_row_slope_[i] = at.slope;
+    sum.gradient += at.slope;
+    sum.magnitude += std::abs(at.slope);
+  }
+  current_slope_ = sum;
 }
 
 bool CollaborativeMixtureModels::CannotImprove(const Eigen::VectorXd& log_odds,
                                                const std::vector<int>& changed) {
-  if (config_.prediction != Prediction::kCalibrated || config_.fit_label_noise) return false;
+  if (!BoundsByTemperatureSlope()) return false;
   // f(τ) = Σ_i log σ(τ z_i) is concave, so below its tangent at the current τ₀:
   // the candidate's L at its best τ is at most f(τ₀) + max(−τ₀, 1 − τ₀)·f′(τ₀).
   // f(τ₀) − L and f′(τ₀) differ from the current model's in the changed rows
@@ -296,26 +321,16 @@ bool CollaborativeMixtureModels::CannotImprove(const Eigen::VectorXd& log_odds,
   // relative 1e−7 of their magnitudes, against n·2⁻⁵³), the fitted ΔL could
   // not be positive either, so the fit is skipped: the same decision.
   const double tau = calibration_.temperature;
-  const Calibration at_current{tau, 0.0};
-  if (!current_slope_) {
-    Slope sum;
-    for (Eigen::Index i = 0; i < sample_log_odds_.size(); ++i) {
-      const double slope = TemperatureSlope(sample_log_odds_[i], tau);
-      sum.gradient += slope;
-      sum.magnitude += std::abs(slope);
-    }
-    current_slope_ = sum;
-  }
+  if (!current_slope_) FillCurrentSlope(nullptr);
   double gain = 0.0;  // f(τ₀) − L
   double gradient = current_slope_->gradient;
   double magnitude = current_slope_->magnitude - *log_likelihood_;  // −L = Σ |log P|
   for (const int i : changed) {
-    const double log_probability = LogCalibratedProbability(log_odds[i], at_current);
-    gain += log_probability - sample_log_probability_[i];
-    const double slope = TemperatureSlope(log_odds[i], tau);
-    const double current_slope = TemperatureSlope(sample_log_odds_[i], tau);
-    gradient += slope - current_slope;
-    magnitude += std::abs(log_probability) + std::abs(slope) + std::abs(current_slope);
+    const ProbabilityAndSlope at = LogProbabilityAndSlope(log_odds[i], tau);
+    gain += at.log_probability - sample_log_probability_[i];
+    const double current_slope = current_row_slope_[i];
+    gradient += at.slope - current_slope;
+    magnitude += std::abs(at.log_probability) + std::abs(at.slope) + std::abs(current_slope);
   }
   const double bound = gain + std::max(-tau * gradient, (1.0 - tau) * gradient);
   return bound < -1e-7 * (1.0 + magnitude + std::abs(gradient));

@@ -63,3 +63,19 @@ TEST(FitCalibration, EstimatesTheShareOfLabelsNoModelExplains) {
 
 }  // namespace
 }  // namespace relmap::cmm
+
+namespace relmap::cmm {
+namespace {
+
+TEST(LogProbabilityAndSlope, HasTheBitsOfTheTwoCallsItReplaces) {
+  for (const double tau : {0.0, 1e-3, 0.3131888582887193, 0.5, 1.0}) {
+    for (const double z : {-800.0, -37.5, -1.0, -1e-9, -0.0, 0.0, 1e-9, 0.7, 20.0, 745.0}) {
+      const ProbabilityAndSlope at = LogProbabilityAndSlope(z, tau);
+      EXPECT_EQ(at.log_probability, LogCalibratedProbability(z, {tau, 0.0})) << z << " " << tau;
+      EXPECT_EQ(at.slope, TemperatureSlope(z, tau)) << z << " " << tau;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace relmap::cmm
