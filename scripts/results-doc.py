@@ -72,9 +72,9 @@ def sim_block(root, setups, suffixes):
         sim_table.table(os.path.join(root, KINECT), names)
 
 
-def paired_block(root, setups):
+def paired_block(root, setups, comparisons=sim_paired.COMPARISONS):
     return [f"Table: `scripts/results-sim-paired.py {KINECT}` (every setup's rows).", ""] + \
-        sim_paired.table(os.path.join(root, KINECT), setups)
+        sim_paired.table(os.path.join(root, KINECT), setups, comparisons)
 
 
 def learning_block(root, metric):
@@ -111,10 +111,11 @@ BLOCKS = {
     "ablations": lambda root: sim_block(root, PAPER + BENCHMARK, ["-paper2018", "-random"]),
     "paired-paper": lambda root: paired_block(root, PAPER),
     "paired-benchmark": lambda root: paired_block(root, BENCHMARK),
-    "physical": lambda root: sim_block(root, PAPER + BENCHMARK, ["-physical"]),
-    "object": lambda root: sim_block(root, BENCHMARK, ["", "-object"]),
+    "physical": lambda root: sim_block(root, PAPER + BENCHMARK, ["-physical", "-physical-moved"]),
+    "object": lambda root: sim_block(root, BENCHMARK, ["", "-object", "-moved", "-near"]),
+    "paired-labels": lambda root: paired_block(root, BENCHMARK, sim_paired.LABEL_COMPARISONS[1:6]),
+    "labels-paper": lambda root: sim_block(root, PAPER, ["-moved", "-near"]),
     "learning-balanced": lambda root: learning_block(root, "balanced_accuracy_mean"),
-    "learning-soft": lambda root: learning_block(root, "soft_accuracy"),
     "soak": soak_block,
     "learning-gap": gap_block,
 }
