@@ -5,7 +5,7 @@
 # --stream real=train.csv:test.csv). Results: out/bench-learning/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# The batch reference (random forest, RBF SVM) runs on Debian's scikit-learn.
+# The batch reference (random forest, RBF SVM, logistic regression) runs on Debian's scikit-learn.
 ./scripts/install-deps.sh python3-sklearn
 ./scripts/configure-build.sh
 mkdir -p out/bench-learning

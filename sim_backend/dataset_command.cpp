@@ -1,5 +1,6 @@
 // relmap-sim dataset: options, the scene, the server (given or started), one session
-// that only computes maps, the frames, then the two files and a summary on stderr.
+// that only computes maps, the frames, then the two files and a summary on stderr; with
+// --mode physical, a physical-mode replication and what its session learned instead.
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -9,6 +10,7 @@
 #include "dataset_options.h"
 #include "flags.h"
 #include "grpc_status.h"
+#include "physical_dataset.h"
 #include "progress_bar.h"
 #include "scene_loading.h"
 #include "server_connection.h"
@@ -61,6 +63,38 @@ StatusOr<Collected> CollectFrames(const DatasetOptions& options, SimulatedScene&
   return collected;
 }
 
+// --mode physical: the run, its files and its summary line.
+int RunPhysicalDataset(const DatasetOptions& options, SimulatedScene& scene,
+                       client::RelevanceClient& client) {
+  const auto start = std::chrono::steady_clock::now();
+  StatusOr<std::vector<LearnedSample>> samples =
+      CollectLearnedSamples(options, scene, client, stderr);
+  if (!samples.ok()) return FailCommand("dataset", samples.status().message(), 1);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (Status written =
+          WriteLearnedSamples(*samples, options.out, options.truth_out, options.frames_out);
+      !written.ok()) {
+    return FailCommand("dataset", written.message(), 2);
+  }
+  std::size_t moveable = 0, truly_moveable = 0, mislabelled = 0;
+  for (const LearnedSample& s : *samples) {
+    moveable += s.label ? 1 : 0;
+    truly_moveable += s.truth ? 1 : 0;
+    mislabelled += s.label != s.truth ? 1 : 0;
+  }
+  std::fprintf(stderr,
+               "%s: %s, %d pushes in physical mode (seed %llu): %zu samples learned, %zu as "
+               "moveable (%zu truly), %zu mislabelled; %.0f ms per push -> %s, %s%s%s\n",
+               kCommand, scene.name().c_str(), options.frames,
+               static_cast<unsigned long long>(options.seed), samples->size(), moveable,
+               truly_moveable, mislabelled, 1000.0 * seconds / options.frames, options.out.c_str(),
+               options.frames_out.c_str(), options.truth_out.empty() ? "" : ", ",
+               options.truth_out.c_str());
+  if (samples->empty()) return FailCommand("dataset", "no push was learned", 1);
+  return 0;
+}
+
 }  // namespace
 
 int RunDatasetCommand(int argc, char** argv) {
@@ -87,6 +121,9 @@ int RunDatasetCommand(int argc, char** argv) {
                        server.status().code() == StatusCode::kNotFound ? 2 : 1);
   }
 
+  if (options->mode == LabellingMode::kPhysical) {
+    return RunPhysicalDataset(*options, **scene, *server->client);
+  }
   const auto start = std::chrono::steady_clock::now();
   StatusOr<Collected> collected = CollectFrames(*options, **scene, *server->client);
   if (!collected.ok()) return FailCommand("dataset", collected.status().message(), 1);

@@ -6,15 +6,11 @@
 #include "common/labelled_csv.h"
 
 namespace relmap::sim {
-namespace {
-
-Status Written(std::ofstream& file, const std::string& path) {
+Status FileWritten(std::ofstream& file, const std::string& path) {
   file.flush();
   if (!file) return InternalError("cannot write " + path);
   return OkStatus();
 }
-
-}  // namespace
 
 Status WriteDataset(const std::vector<DatasetRow>& rows, const std::string& csv_path,
                     const std::string& frames_path) {
@@ -26,8 +22,8 @@ Status WriteDataset(const std::vector<DatasetRow>& rows, const std::string& csv_
     datasets::WriteLabelledCsvRow(row.moveable ? 1 : 0, row.features, csv);
     frames << row.frame << ',' << row.body << ',' << row.object << '\n';
   }
-  if (Status status = Written(csv, csv_path); !status.ok()) return status;
-  return Written(frames, frames_path);
+  if (Status status = FileWritten(csv, csv_path); !status.ok()) return status;
+  return FileWritten(frames, frames_path);
 }
 
 }  // namespace relmap::sim

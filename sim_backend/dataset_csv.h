@@ -2,6 +2,7 @@
 // read (common/labelled_csv.h), and beside it each row's frame.
 #pragma once
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,9 @@ namespace relmap::sim {
 // (DatasetRow::object). Both stay out
 // of the CSV because every column after the label is a feature to its readers.
 // INTERNAL naming the file when one cannot be written.
+// OK once `file` (written to `path`) is flushed without error, else INTERNAL naming it.
+Status FileWritten(std::ofstream& file, const std::string& path);
+
 Status WriteDataset(const std::vector<DatasetRow>& rows, const std::string& csv_path,
                     const std::string& frames_path);
 

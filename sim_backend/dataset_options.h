@@ -1,5 +1,5 @@
-// The settings of one `relmap-sim dataset`: which scene, how many re-spawned frames
-// from which seed, at what image size, which server, and where the rows go.
+// The settings of one `relmap-sim dataset`: which scene, how many re-spawned frames (or
+// physical pushes) from which seed, at what image size, which server, and where the rows go.
 #pragma once
 
 #include <cstdint>
@@ -7,13 +7,17 @@
 #include <string>
 
 #include "common/status.h"
+#include "experiment_options.h"
 #include "image_size.h"
 
 namespace relmap::sim {
 
 struct DatasetOptions {
   std::string scene;  // a scene name or a scene file
-  int frames = 20;
+  // kOracle: every usable supervoxel of re-spawned frames with its ground truth;
+  // kPhysical: the targets a physical-mode run pushed, with the labels it learned.
+  LabellingMode mode = LabellingMode::kOracle;
+  int frames = 20;  // kPhysical: iterations (pushes)
   // The scene's instance and every frame's re-spawn (as `relmap-sim run --mode oracle
   // --seed S` draws them for its first replication).
   std::uint64_t seed = 1;
@@ -22,6 +26,7 @@ struct DatasetOptions {
   std::string server_binary;
   std::string out;         // the labelled CSV (relmap-cmm's format)
   std::string frames_out;  // per row its frame; default out + ".frames"
+  std::string truth_out;   // kPhysical: the rows with their ground truth; empty: none
 };
 
 // The usage text of `relmap-sim dataset`.

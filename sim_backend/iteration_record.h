@@ -73,6 +73,9 @@ struct ReplicationResult {
   int replication = 0;
   std::uint64_t seed = 0;
   std::string session_id;
+  // Its bearer token: what reads the session afterwards needs it (`relmap-sim dataset
+  // --mode physical` exports the samples it learned).
+  std::string session_token;
   std::vector<IterationRecord> iterations;
   std::string error;
 };

@@ -62,6 +62,7 @@ class Replication {
     result.seed = seed_;
     Status status = CreateSession();
     result.session_id = session_.id;
+    result.session_token = session_.token;
     for (int i = 1; status.ok() && i <= options_.iterations; ++i) {
       StatusOr<IterationRecord> record = Iterate(i);
       if (!record.ok()) {

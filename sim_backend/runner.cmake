@@ -11,8 +11,10 @@ add_library(relmap_sim_runner STATIC
   experiment_options.cpp
   flags.cpp
   ground_truth.cpp
+  learned_samples.cpp
   map_snapshots.cpp
   packed_cloud.cpp
+  physical_dataset.cpp
   plots.cpp
   replication.cpp
   scene_loading.cpp

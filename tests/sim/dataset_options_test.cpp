@@ -37,6 +37,29 @@ TEST(DatasetOptions, ReadsEveryFlag) {
   EXPECT_EQ(options->server, "host:1");
 }
 
+TEST(DatasetOptions, PhysicalModeTakesATruthFileBesideItsCsv) {
+  const StatusOr<DatasetOptions> oracle = Parse({"--scene", "s", "--out", "x.csv"});
+  ASSERT_TRUE(oracle.ok()) << oracle.status().message();
+  EXPECT_EQ(oracle->mode, LabellingMode::kOracle);
+  EXPECT_TRUE(oracle->truth_out.empty());
+  const StatusOr<DatasetOptions> physical =
+      Parse({"--scene", "s", "--out", "x.csv", "--truth-out", "t.csv", "--mode", "physical"});
+  ASSERT_TRUE(physical.ok()) << physical.status().message();
+  EXPECT_EQ(physical->mode, LabellingMode::kPhysical);
+  EXPECT_EQ(physical->truth_out, "t.csv");
+}
+
+TEST(DatasetOptions, ATruthFileOverAnotherOutputIsRefused) {
+  for (const std::vector<const char*>& words : std::vector<std::vector<const char*>>{
+           {"--scene", "s", "--out", "x.csv", "--mode", "physical", "--truth-out", "x.csv"},
+           {"--scene", "s", "--out", "x.csv", "--mode", "physical", "--truth-out",
+            "x.csv.frames"}}) {
+    const StatusOr<DatasetOptions> options = Parse(words);
+    ASSERT_FALSE(options.ok()) << words.back();
+    EXPECT_EQ(options.status().code(), StatusCode::kInvalidArgument);
+  }
+}
+
 TEST(DatasetOptions, MisuseIsAnInvalidArgumentNamingTheFlag) {
   const std::vector<std::pair<std::vector<const char*>, std::string>> cases = {
       {{"--out", "x.csv"}, "--scene"},
@@ -46,7 +69,8 @@ TEST(DatasetOptions, MisuseIsAnInvalidArgumentNamingTheFlag) {
       {{"--scene", "s", "--out", "x.csv", "--resolution", "640x0"}, "--resolution"},
       {{"--scene", "s", "--out", "x.csv", "--frames-out", "x.csv"}, "--frames-out"},
       {{"--scene", "s", "--out", "x.csv", "--server", "a:1", "--server-binary", "b"}, "--server"},
-      {{"--scene", "s", "--out", "x.csv", "--mode", "oracle"}, "--mode"}};
+      {{"--scene", "s", "--out", "x.csv", "--mode", "pushed"}, "--mode"},
+      {{"--scene", "s", "--out", "x.csv", "--truth-out", "t.csv"}, "--truth-out"}};
   for (const auto& [words, flag] : cases) {
     const StatusOr<DatasetOptions> options = Parse(words);
     ASSERT_FALSE(options.ok()) << flag;

@@ -7,8 +7,8 @@ target_link_libraries(relmap_sim_analytic_scene PUBLIC relmap_sim_runner PRIVATE
 relmap_add_gtest(sim_runner_test
   SOURCES analytic_scene_test.cpp curves_test.cpp dataset_options_test.cpp
           experiment_options_test.cpp
-          ground_truth_test.cpp packed_cloud_test.cpp target_choice_test.cpp
-          body_labels_test.cpp
+          body_labels_test.cpp ground_truth_test.cpp learned_samples_test.cpp
+          packed_cloud_test.cpp target_choice_test.cpp
   LIBRARIES relmap_sim_analytic_scene relmap_sim_runner
   LABELS unit)
 

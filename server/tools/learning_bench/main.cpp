@@ -37,7 +37,7 @@ constexpr std::string_view kUsage =
     "usage: relmap-bench-learning [--learners a,b,...] [--streams a,b,...]\n"
     "         [--stream NAME=TRAIN.csv:TEST.csv ...] [--train-samples 400] [--test-samples 2000]\n"
     "         [--curve 50] [--seed 1] [--replications 3] [--out DIR] [--reference]\n"
-    "         [--reference-script PATH]\n"
+    "         [--reference-script PATH] [--flip FRACTION]\n"
     "  --learners  CMM configurations (corrected, corrected:acceptance=training, ...), alpha1 "
     "(corrected with\n"
     "              alpha = 1), gnb, sgd, knn; unknown names are skipped with a warning.\n"
@@ -48,11 +48,15 @@ constexpr std::string_view kUsage =
     "              xor48-unit-range\n"
     "  --stream    an external stream in relmap-cmm's CSV format (label first),\n"
     "              repeatable; run once, as its samples are fixed\n"
+    "  --flip      also run each --stream with that fraction of its training labels\n"
+    "              flipped (exactly round(FRACTION x n), a subset drawn from --seed),\n"
+    "              as NAME-flipPP right after it; FRACTION in (0, 1)\n"
     "  --curve     score the test set every N training samples (learning curves)\n"
     "  --out       write table.csv, table.json, curves.csv, curves/STREAM.png and the\n"
     "              streams as CSV (streams/STREAM.rK.train.csv, .test.csv)\n"
-    "  --reference also run the batch random forest and RBF SVM of scikit-learn on\n"
-    "              the written streams (needs --out, python3 and sklearn)\n";
+    "  --reference also run the batch random forest, RBF SVM and logistic regression\n"
+    "              of scikit-learn on the written streams (needs --out, python3 and\n"
+    "              sklearn)\n";
 
 struct Options {
   std::vector<std::string> learners;
@@ -65,6 +69,7 @@ struct Options {
   std::string out;
   bool reference = false;
   std::string reference_script = RELMAP_REFERENCE_SCRIPT;
+  std::optional<double> flip;  // the fraction of an external stream's labels flipped
 };
 
 [[noreturn]] void Fail(const std::string& message) { tools::ExitWithError(kProgram, message); }
@@ -121,6 +126,13 @@ Options ParseArguments(int argc, char** argv) {
       o.reference = true;
     } else if (flag == "--reference-script") {
       o.reference_script = value();
+    } else if (flag == "--flip") {
+      const char* text = value();
+      const double fraction = tools::ParseNumberOrExit(kProgram, flag, text);
+      if (!(fraction > 0 && fraction < 1)) {
+        Fail(fmt::format("--flip expects a fraction in (0, 1), got '{}'", text));
+      }
+      o.flip = fraction;
     } else if (flag == "--help" || flag == "-h") {
       std::fputs(kUsage.data(), stdout);
       std::exit(0);
@@ -131,6 +143,7 @@ Options ParseArguments(int argc, char** argv) {
   if (!streams_given && o.external_streams.empty()) {
     for (const StreamSpec& spec : BuiltInStreams()) o.builtin_streams.emplace_back(spec.name);
   }
+  if (o.flip && o.external_streams.empty()) Fail("--flip needs a --stream to flip");
   if (o.reference && o.out.empty())
     Fail("--reference needs --out DIR (it reads the streams there)");
   return o;
@@ -182,7 +195,13 @@ std::vector<std::vector<Stream>> LoadStreams(const Options& o) {
     }
     auto stream = LoadStream(name, text.substr(eq + 1, colon - eq - 1), text.substr(colon + 1));
     if (!stream.ok()) Fail(stream.status().message());
-    streams.push_back({std::move(stream).value()});
+    if (o.flip) {
+      Stream flipped = FlippedStream(*stream, *o.flip, o.seed);
+      streams.push_back({std::move(stream).value()});
+      streams.push_back({std::move(flipped)});
+    } else {
+      streams.push_back({std::move(stream).value()});
+    }
   }
   if (streams.empty()) Fail("no stream to run");
   return streams;
@@ -279,7 +298,8 @@ int Main(int argc, char** argv) {
   const double wall = SecondsSince(start);
   std::fputs(FormatTable(rows).c_str(), stdout);
   std::fputs(FormatBestLines(best).c_str(), stdout);
-  std::printf("reference (random forest, RBF SVM): %s\n", reference.status.c_str());
+  std::printf("reference (random forest, RBF SVM, logistic regression): %s\n",
+              reference.status.c_str());
   std::printf("wall time: %.1f s\n", wall);
 
   if (!o.out.empty()) {

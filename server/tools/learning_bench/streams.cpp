@@ -2,6 +2,8 @@
 #include "learning_bench/streams.h"
 
 #include <array>
+#include <cmath>
+#include <string>
 
 #include "common/labelled_csv.h"
 #include "common/random.h"
@@ -73,6 +75,13 @@ Stream MakeStream(const StreamSpec& spec, StreamSizes sizes, std::uint64_t seed,
     stream.train.features = datasets::MapToUnitRange(stream.train.features, stream.train.features);
   }
   return stream;
+}
+
+Stream FlippedStream(const Stream& stream, double fraction, std::uint64_t seed) {
+  Stream flipped = stream;
+  flipped.name += "-flip" + std::to_string(std::llround(100.0 * fraction));
+  datasets::FlipLabels(flipped.train, fraction, DeriveSeed(seed, 0, SeedUse::kFlips));
+  return flipped;
 }
 
 StatusOr<Stream> LoadStream(std::string name, const std::string& train_csv,

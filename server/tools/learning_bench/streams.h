@@ -48,6 +48,12 @@ struct StreamSizes {
 // table is the variant's doing.
 Stream MakeStream(const StreamSpec& spec, StreamSizes sizes, std::uint64_t seed, int replication);
 
+// `stream` with exactly round(fraction × n) of its n training labels flipped, a
+// uniform subset drawn from `seed` (datasets::FlipLabels), its test set as it is:
+// the label noise of a change detector that is wrong on some pushes, reproducibly.
+// Named "<name>-flip<percent>", the percent rounded to a whole number.
+Stream FlippedStream(const Stream& stream, double fraction, std::uint64_t seed);
+
 // An external stream in relmap-cmm's CSV format (label first). Unreadable or
 // malformed files, or sets of different dimensions → an error naming the file.
 StatusOr<Stream> LoadStream(std::string name, const std::string& train_csv,

@@ -34,6 +34,22 @@ for r in report["rows"]:
 assert set(report["best"]) == {"xor2d", "ext"}
 assert report["curves"][0]["samples"] == [20, 40, 60]
 PY
+# --flip: a flipped copy of the stream after it, exactly round(0.2 × 60) = 12 of its
+# training labels flipped, the same ones on a second run.
+for run in a b; do
+  "$bench" --stream "ext=$dir/train.csv:$dir/test.csv" --flip 0.2 --learners gnb --seed 3 \
+    --out "$dir/flip-$run" >"$dir/flip-$run.txt" 2>&1 || fail "--flip exit $?: $(cat "$dir/flip-$run.txt")"
+done
+grep -q '^best on ext-flip20: ' "$dir/flip-a.txt" || fail "no ext-flip20 row: $(cat "$dir/flip-a.txt")"
+flips=$(paste -d' ' <(cut -d, -f1 "$dir/flip-a/streams/ext.r0.train.csv") \
+  <(cut -d, -f1 "$dir/flip-a/streams/ext-flip20.r0.train.csv") | awk '$1 != $2' | wc -l)
+[ "$flips" -eq 12 ] || fail "--flip 0.2 flipped $flips of 60 labels, not 12"
+cmp -s "$dir/flip-a/streams/ext-flip20.r0.train.csv" "$dir/flip-b/streams/ext-flip20.r0.train.csv" ||
+  fail "--flip is not reproducible"
+cmp -s "$dir/flip-a/streams/ext.r0.test.csv" "$dir/flip-a/streams/ext-flip20.r0.test.csv" ||
+  fail "--flip changed the test set"
+"$bench" --flip 0.2 >/dev/null 2>&1
+[ $? -eq 2 ] || fail "--flip without --stream should exit 2"
 "$bench" --streams nowhere >/dev/null 2>&1
 [ $? -eq 2 ] || fail "an unknown stream should exit 2"
 echo "ok   relmap-bench-learning"
